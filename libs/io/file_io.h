@@ -1,0 +1,33 @@
+// Whole-file reads and atomic writes. Every output of the compiler goes through writeFileAtomic so
+// that an interrupted run never leaves a half-written file in place of a good one.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace q3 {
+
+// Thrown for any file-system failure; the message names the file and the reason.
+struct FileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
+std::string readFileText(const std::filesystem::path& path);
+
+// Writes to a uniquely named temporary file in the target's folder, flushes it to disk and renames
+// it over the target. On failure the temporary is removed and the target is left as it was.
+void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes);
+void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
+
+// The prefix of temporary files written by writeFileAtomic ("<name>.tmp-<pid>-<n>"), so that a
+// later run can remove leftovers of a killed one.
+std::string atomicTempPrefix(const std::filesystem::path& target);
+// Removes temporaries left beside `target` by a run that was killed. Returns how many were removed.
+int removeStaleTemporaries(const std::filesystem::path& target);
+
+}  // namespace q3

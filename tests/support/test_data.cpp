@@ -1,0 +1,86 @@
+#include "test_data.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
+
+namespace q3::test {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<fs::path> findFiles(const fs::path& root, const std::string& extension, const std::string& folder) {
+    std::vector<fs::path> out;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        const fs::path& p = it->path();
+        if (!it->is_regular_file()) continue;
+        std::string ext = p.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+        if (ext == extension && p.parent_path().filename() == folder) out.push_back(p);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+fs::path dataCache() {
+    const char* env = std::getenv("Q3MAP_DATA_CACHE");
+    fs::path root;
+    if (env && *env) root = env;
+    else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) root = fs::path(xdg) / "q3map2-data";
+    else root = fs::path(std::getenv("HOME") ? std::getenv("HOME") : "/root") / ".cache" / "q3map2-data";
+    if (!fs::exists(root / ".complete-v1")) {
+        ADD_FAILURE() << "OpenArena test data missing at " << root << ": run tools/fetch-openarena.sh";
+        throw std::runtime_error("test data missing");
+    }
+    return root;
+}
+
+fs::path openArenaBase() { return dataCache() / "openarena"; }
+
+std::vector<fs::path> allRealBsps() { return findFiles(dataCache() / "loose", ".bsp", "maps"); }
+
+std::vector<fs::path> oacmpMapSources() { return findFiles(dataCache() / "loose", ".map", "maps"); }
+
+fs::path realBsp(const std::string& mapName) {
+    for (const fs::path& p : allRealBsps())
+        if (p.stem() == mapName) return p;
+    ADD_FAILURE() << "no real BSP named " << mapName;
+    throw std::runtime_error("missing map " + mapName);
+}
+
+std::vector<fs::path> allShaderScripts() { return findFiles(dataCache() / "loose", ".shader", "scripts"); }
+
+fs::path tempDir() {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "global";
+    std::replace(name.begin(), name.end(), '/', '_');
+    fs::path dir = fs::path(Q3MAP_BINARY_DIR) / "test-tmp" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+fs::path q3map2Exe() { return fs::path(Q3MAP_BINARY_DIR) / "q3map2" / "q3map2"; }
+
+int runCommand(const std::string& commandLine, std::string* output) {
+    std::string cmd = commandLine + " 2>&1";
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    if (!pipe) return -1;
+    std::array<char, 4096> buffer{};
+    std::string text;
+    size_t n;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) text.append(buffer.data(), n);
+    int status = ::pclose(pipe);
+    if (output) *output = text;
+    if (WIFEXITED(status)) return WEXITSTATUS(status);
+    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+}  // namespace q3::test

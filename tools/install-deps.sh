@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the build and the tests need; a no-op when all are present.
+# Usage: tools/install-deps.sh [build|test|engines]...   (default: build test)
+set -euo pipefail
+
+build_pkgs=(cmake ninja-build g++ pkg-config libembree-dev libtbb-dev libjpeg62-turbo-dev libpng-dev
+            zlib1g-dev libminizip-dev rapidjson-dev libxml2-dev libglib2.0-dev libgtest-dev
+            libbenchmark-dev ccache)
+test_pkgs=(clang libclang-rt-14-dev glslang-tools unzip ca-certificates)
+engine_pkgs=(ioquake3 ioquake3-server openarena openarena-server darkplaces darkplaces-server
+             fteqcc xvfb xauth libgl1-mesa-dri imagemagick)
+
+groups=("$@")
+[ ${#groups[@]} -gt 0 ] || groups=(build test)
+
+want=()
+for g in "${groups[@]}"; do
+  case "$g" in
+    build) want+=("${build_pkgs[@]}") ;;
+    test) want+=("${test_pkgs[@]}") ;;
+    engines) want+=("${engine_pkgs[@]}") ;;
+    *) echo "install-deps: unknown group '$g' (expected build, test or engines)" >&2; exit 2 ;;
+  esac
+done
+
+missing=()
+for p in "${want[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

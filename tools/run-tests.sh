@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds and runs the whole test suite: the release build, then the sanitizer build.
+# Usage: tools/run-tests.sh [release-build-dir] [sanitizer-build-dir]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+release=${1:-build}
+asan=${2:-build-asan}
+jobs=$(nproc)
+
+tools/install-deps.sh build test engines
+tools/fetch-openarena.sh >/dev/null
+
+echo "== release build ($release)"
+cmake -S . -B "$release" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$release" -j "$jobs"
+echo "== release tests"
+ctest --test-dir "$release" --output-on-failure -j "$jobs" --timeout 1200
+
+echo "== sanitizer build ($asan: AddressSanitizer + UndefinedBehaviorSanitizer)"
+cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQ3MAP_SANITIZE=ON -DQ3MAP_BENCH=OFF >/dev/null
+cmake --build "$asan" -j "$jobs"
+echo "== sanitizer tests"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir "$asan" --output-on-failure -j "$jobs" --timeout 2400 -LE no-sanitizer
