@@ -1,0 +1,38 @@
+// The SH light grid lump (BSP lump 18 of version 47, or the BSPX lump "LIGHTGRID_SH"):
+// a 40-byte header followed by 108-byte points, little-endian. See docs/sh-grid-format.md.
+// Dependency-free: engines can take this header and its .cpp as they are.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace q3::sh {
+
+constexpr size_t kGridHeaderBytes = 40;
+constexpr size_t kGridPointBytes = 108;
+constexpr const char* kBspxLumpName = "LIGHTGRID_SH";
+
+struct GridPointSH {
+    float coeffs[9][3];  // coefficient-major: coeffs[i] = {R, G, B}
+};
+static_assert(sizeof(GridPointSH) == kGridPointBytes);
+
+struct GridSH {
+    float mins[3] = {0, 0, 0};
+    float size[3] = {0, 0, 0};
+    int32_t bounds[3] = {0, 0, 0};
+    std::vector<GridPointSH> points;  // index x + y*bx + z*bx*by
+};
+
+// Checks a lump image: header present, bounds positive, numPoints == bx*by*bz,
+// length == 40 + 108*numPoints, every float finite, cell size positive.
+// Returns an empty string when valid, else one line saying what is wrong.
+std::string checkGridLump(const uint8_t* data, size_t size);
+
+// Decodes a lump image (calls checkGridLump first). Returns false and sets `error` when invalid.
+bool decodeGridLump(const uint8_t* data, size_t size, GridSH& out, std::string& error);
+std::vector<uint8_t> encodeGridLump(const GridSH& grid);
+
+}  // namespace q3::sh
