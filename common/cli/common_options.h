@@ -1,0 +1,23 @@
+// Options every stage shares: those given before the stage switch, and the map path.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace q3 {
+
+struct CommonOptions {
+    bool verbose = false;
+    int threads = 0;                       // 0 = one per core
+    std::string game = "quake3";           // -game
+    std::vector<std::string> basePaths;    // -fs_basepath, repeatable
+    std::string fsGame;                    // -fs_game
+    std::string homePath;                  // -fs_homepath
+    std::string connect;                   // -connect host:port
+    bool force = false;                    // -force
+    std::filesystem::path mapPath;         // as given, extension normalised to .bsp by the stage
+    std::string commandLine;               // the stage's own arguments, for _q3map2_cmdline
+};
+
+}  // namespace q3
