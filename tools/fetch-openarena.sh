@@ -5,9 +5,10 @@
 #   cache root: $Q3MAP_DATA_CACHE, else $XDG_CACHE_HOME/q3map2-data, else ~/.cache/q3map2-data
 set -euo pipefail
 
-packages=(openarena-oacmp1 openarena-081-maps openarena-081-textures openarena-085-data openarena-088-data)
+packages=(openarena-oacmp1 openarena-081-maps openarena-081-textures openarena-085-data openarena-088-data
+          openarena-data openarena-081-misc)
 cache="${Q3MAP_DATA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/q3map2-data}"
-stamp="$cache/.complete-v1"
+stamp="$cache/.complete-v2"
 
 if [ -f "$stamp" ]; then
   echo "$cache"

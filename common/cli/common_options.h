@@ -16,8 +16,8 @@ struct CommonOptions {
     std::string homePath;                  // -fs_homepath
     std::string connect;                   // -connect host:port
     bool force = false;                    // -force
-    std::filesystem::path mapPath;         // as given, extension normalised to .bsp by the stage
-    std::string commandLine;               // the stage's own arguments, for _q3map2_cmdline
+    std::filesystem::path mapPath;         // the .bsp the map argument names (x.map and x give x.bsp)
+    std::string commandLine;               // the stage switch and its options, for _q3map2_cmdline
 };
 
 }  // namespace q3

@@ -1,11 +1,15 @@
 // Quake 3 IBSP files: typed lumps, reading with validation, and writing.
 //
 // Supported headers: version 46 with 17 lump entries (id's layout), version 46 with 18 entries (what
-// q3map2 writes), version 47 with 18 entries (Quake Live) and 19 entries (lump 18 = SH light grid).
+// q3map2 writes), version 47 with 18 entries (Quake Live) and 19 entries (lump 18 = SH light grid),
+// and version 47 with 17 entries (RTCW/ET maps). The entry count is not stored in the file: it is
+// the largest count for which no lump data starts inside the header and every extra entry is a
+// range inside the file. Other versions are read with ReadOptions::force.
 // A BSPX trailer after the last lump carries extra named lumps.
 // All records are little-endian and stored with their on-disk layout, so a lump is a plain array.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -184,16 +188,36 @@ Bsp parseBsp(std::span<const uint8_t> bytes, const std::string& name, const Read
 Bsp readBsp(const std::filesystem::path& path, const ReadOptions& options = {});
 
 // Checks cross-references (indices in range) and coordinates (finite). Throws BspError.
+// Covered: shader/fog names terminated; planes, vertex positions and normals, model bounds finite;
+// node planes and children, leaf surface/brush ranges and their values, model surface/brush
+// ranges, brush sides and shaders, fog brushes and visible sides, surface shaders, fogs, types,
+// vertex and index ranges, index values within the surface's vertices, whole triangles, patch
+// sizes; visibility header against its size and leaf clusters; lump 18 and the BSPX
+// "LIGHTGRID_SH" lump through q3::sh::checkGridLump. Tolerated because shipped maps have them:
+// NaN texture/lightmap coordinates, and fogNum 0 in maps without fogs.
 void validateBsp(const Bsp& bsp, const std::string& name);
 
 // Serialises to the file image: header with bsp.version / bsp.headerLumps entries, lumps 4-byte
 // aligned and zero-padded, then the BSPX trailer when bsp.bspx is not empty. Deterministic.
-std::vector<uint8_t> serializeBsp(const Bsp& bsp);
+// Throws BspError (naming `name`) when a non-empty lump has no header entry (lump 17 with a
+// 17-entry header, lump 18 without 19 entries), a BSPX name is empty or too long, or the file
+// would not fit 32-bit offsets.
+std::vector<uint8_t> serializeBsp(const Bsp& bsp, const std::string& name = "bsp");
 // serializeBsp + atomic replace of the target (temp file in the same folder, then rename).
 void writeBsp(const std::filesystem::path& path, const Bsp& bsp);
 
 // Raw byte view of one lump as it would be written (used by -info and by tests comparing payloads).
+// Throws BspError for a lump number outside [0, kMaxLumps).
 std::vector<uint8_t> lumpBytes(const Bsp& bsp, int lump);
+
+// Size in bytes of one record of a lump, or 0 for lumps kept as raw bytes (entities, lightmaps,
+// visibility, lump 17, lump 18).
+size_t lumpRecordSize(int lump);
+
+// Puts an SH grid lump image into lump 18 and switches the header to version 47 with 19 entries.
+void attachShGrid(Bsp& bsp, std::vector<uint8_t> lumpImage);
+// Drops lump 18 and returns to a plain version 46 header (17 entries, or 18 when lump 17 holds data).
+void detachShGrid(Bsp& bsp);
 
 // Entity lump -------------------------------------------------------------------------------------
 struct Entity {
@@ -211,6 +235,7 @@ struct Entity {
 // Parses the entity text ("{ "key" "value" ... }" blocks). Throws BspError naming `name`.
 std::vector<Entity> parseEntities(std::string_view text, const std::string& name);
 // Writes entities the way q3map2 does ("{\n\"key\" \"value\"\n}\n" per entity) with a final NUL.
+// An entity without pairs is written as "{\n}\n", so parse + unparse keeps the entity count.
 std::string unparseEntities(const std::vector<Entity>& entities);
 
 }  // namespace q3::bsp

@@ -27,15 +27,20 @@ std::vector<fs::path> findFiles(const fs::path& root, const std::string& extensi
     return out;
 }
 
-}  // namespace
-
-fs::path dataCache() {
+fs::path cacheRoot() {
     const char* env = std::getenv("Q3MAP_DATA_CACHE");
     fs::path root;
     if (env && *env) root = env;
     else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) root = fs::path(xdg) / "q3map2-data";
     else root = fs::path(std::getenv("HOME") ? std::getenv("HOME") : "/root") / ".cache" / "q3map2-data";
-    if (!fs::exists(root / ".complete-v1")) {
+    return root;
+}
+
+}  // namespace
+
+fs::path dataCache() {
+    fs::path root = cacheRoot();
+    if (!fs::exists(root / ".complete-v2")) {
         ADD_FAILURE() << "OpenArena test data missing at " << root << ": run tools/fetch-openarena.sh";
         throw std::runtime_error("test data missing");
     }
@@ -43,6 +48,12 @@ fs::path dataCache() {
 }
 
 fs::path openArenaBase() { return dataCache() / "openarena"; }
+
+std::vector<fs::path> realBspsForRegistration() {
+    fs::path root = cacheRoot();
+    if (!fs::exists(root / ".complete-v2")) return {};
+    return findFiles(root / "loose", ".bsp", "maps");
+}
 
 std::vector<fs::path> allRealBsps() { return findFiles(dataCache() / "loose", ".bsp", "maps"); }
 

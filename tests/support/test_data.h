@@ -15,6 +15,9 @@ std::filesystem::path dataCache();
 std::filesystem::path openArenaBase();
 // Every BSP unpacked from the packages (about 110), sorted.
 std::vector<std::filesystem::path> allRealBsps();
+// The same list for test registration (INSTANTIATE_TEST_SUITE_P): empty, without failing, when the
+// cache is missing; pair it with a test that asserts the count through allRealBsps().
+std::vector<std::filesystem::path> realBspsForRegistration();
 // The 13 .map sources of openarena-oacmp1, sorted.
 std::vector<std::filesystem::path> oacmpMapSources();
 // The shipped BSP of one map by name ("oacmpdm1"); fails the test when absent.

@@ -1,0 +1,111 @@
+#include "command_line.h"
+
+#include "common_option_table.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace q3::cli {
+
+namespace {
+
+std::string lowered(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    return text;
+}
+
+const StageDescription* findStage(std::span<const StageDescription> stages, const std::string& token) {
+    for (const StageDescription& s : stages)
+        if (lowered(s.name) == lowered(token)) return &s;
+    return nullptr;
+}
+
+std::vector<std::string> stageNames(std::span<const StageDescription> stages) {
+    std::vector<std::string> names;
+    for (const StageDescription& s : stages) names.push_back(s.name);
+    return names;
+}
+
+bool isHelpSwitch(const std::string& token) {
+    std::string t = lowered(token);
+    return t == "-help" || t == "--help" || t == "-h";
+}
+
+}  // namespace
+
+ParseContext stageParseContext(const std::string& stage, const OptionTable<CommonOptions>& commonTable,
+                               std::span<const StageDescription> stages) {
+    return ParseContext{stage, describe(commonTable), stageNames(stages)};
+}
+
+std::filesystem::path bspPathFor(const std::string& mapArg) {
+    std::filesystem::path path(mapArg);
+    std::string extension = lowered(path.extension().string());
+    if (extension == ".bsp") return path;
+    if (extension == ".map") return std::filesystem::path(path).replace_extension(".bsp");
+    if (extension.empty()) return std::filesystem::path(mapArg + ".bsp");
+    throw UsageError("map file '" + mapArg + "' must end in .bsp or .map (or have no extension)");
+}
+
+CommandLine splitCommandLine(std::span<const std::string> args, const OptionTable<CommonOptions>& commonTable,
+                             std::span<const StageDescription> stages, CommonOptions& common) {
+    CommandLine line;
+    if (!args.empty() && isHelpSwitch(args[0])) {
+        if (args.size() > 2) throw UsageError("-help takes at most one stage name, got '" + args[2] + "'");
+        line.help = true;
+        if (args.size() == 2) line.helpTopic = args[1][0] == '-' ? args[1].substr(1) : args[1];
+        return line;
+    }
+
+    // Common options up to the stage switch.
+    std::vector<OptionInfo> commonInfos = describe(commonTable);
+    size_t pos = 0;
+    while (pos < args.size() && !findStage(stages, args[pos])) ++pos;
+    ParseContext before{"", commonInfos, stageNames(stages)};
+    if (pos == args.size()) {
+        // A mistyped stage switch shows up as an unknown option; name it rather than the missing stage.
+        std::span<const std::string> leading = args;
+        if (!leading.empty() && !leading.back().empty() && leading.back()[0] != '-')
+            leading = leading.first(leading.size() - 1);
+        parseArguments(commonInfos, leading, before);
+        throw UsageError("no stage given: expected a stage switch such as -light or -info before the map file "
+                         "(see q3map2 -help)");
+    }
+    parseOptions(commonTable, args.subspan(0, pos), before, common);
+
+    const StageDescription& stage = *findStage(stages, args[pos]);
+    if (!stage.available) throw UsageError(stage.name + " is a q3map2 stage this build does not implement yet");
+    line.stage = stage.name;
+
+    std::span<const std::string> rest = args.subspan(pos + 1);
+    if (rest.empty() || rest.back().empty() || rest.back()[0] == '-')
+        throw UsageError(stage.name + " needs a map file as its last argument (" + stage.name + " [options] " +
+                         stage.fileUsage + ")");
+    line.mapArg = rest.back();
+    line.stageArgs.assign(rest.begin(), rest.end() - 1);
+
+    common.mapPath = bspPathFor(line.mapArg);
+    common.commandLine = stage.name;
+    for (const std::string& a : line.stageArgs) common.commandLine += " " + a;
+    return line;
+}
+
+std::string helpText(const CommandLine& line, const OptionTable<CommonOptions>& commonTable,
+                     std::span<const StageDescription> stages) {
+    std::vector<OptionInfo> common = describe(commonTable);
+    if (line.helpTopic.empty()) return formatGeneralHelp(common, stages);
+    if (lowered(line.helpTopic) == "game") {
+        std::string text = "Available games:\n";
+        for (const std::string& game : supportedGames()) text += "  " + game + "\n";
+        return text;
+    }
+    if (const StageDescription* stage = findStage(stages, "-" + line.helpTopic))
+        return formatStageHelp(common, *stage);
+    std::vector<std::string> names;
+    for (const StageDescription& s : stages) names.push_back(s.name.substr(1));
+    std::string suggestion = closestName(line.helpTopic, names);
+    throw UsageError("no help for unknown stage '" + line.helpTopic + "'" +
+                     (suggestion.empty() ? std::string(" (see q3map2 -help)") : "; did you mean '" + suggestion + "'?"));
+}
+
+}  // namespace q3::cli

@@ -1,0 +1,127 @@
+// Brush faces: the classic Quake 3 form (with the Valve 220 variant) and brushDef brush primitives.
+#include <string>
+
+#include "map_parse_internal.h"
+
+namespace q3::map::detail {
+namespace {
+
+std::string faceWhere(const PrimitiveContext& ctx, size_t faceIndex) {
+    return "in face " + std::to_string(faceIndex) + " of " + ctx.describe();
+}
+
+// The three plane points; the current token is the first "(" when `firstOpenRead` is true.
+void readPlanePoints(Script& s, BrushFace& face, const std::string& where, bool firstOpenRead) {
+    face.line = s.line();
+    for (int i = 0; i < 3; ++i) {
+        const std::string what = "plane point " + std::to_string(i + 1) + " " + where;
+        if (i == 0 && firstOpenRead) {
+            face.points[0].x = readFloat(s, what + " x");
+            face.points[0].y = readFloat(s, what + " y");
+            face.points[0].z = readFloat(s, what + " z");
+            require(s, ")", "to close " + what);
+        } else {
+            face.points[i] = readPoint(s, what);
+        }
+    }
+    face.planeValid = planeFromPoints(face.points[0], face.points[1], face.points[2], face.plane);
+}
+
+// Optional "contents flags value" at the end of the face's line.
+void readOptionalFlags(Script& s, BrushFace& face, const std::string& where) {
+    if (!s.tokenAvailableOnLine()) return;
+    face.hasFlags = true;
+    face.contentFlags = readInt(s, "content flags " + where, true);
+    face.surfaceFlags = readInt(s, "surface flags " + where, true);
+    face.value = readInt(s, "surface value " + where, true);
+}
+
+// Everything after the texture name of a classic face.
+void readClassicProjection(Script& s, BrushFace& face, const std::string& where) {
+    if (!s.next(false)) s.fail("line ends before the texture shift " + where);
+    if (!s.tokenWasQuoted() && s.token() == "[") {
+        // Valve 220: [ ux uy uz offset ] [ vx vy vz offset ] rotate scaleS scaleT
+        face.projection = TexProjection::Valve220;
+        for (int axis = 0; axis < 2; ++axis) {
+            const std::string what = std::string(axis == 0 ? "S" : "T") + " texture axis " + where;
+            if (axis == 1) require(s, "[", "to open the " + what);
+            face.valve.axis[axis].x = readFloat(s, what);
+            face.valve.axis[axis].y = readFloat(s, what);
+            face.valve.axis[axis].z = readFloat(s, what);
+            face.valve.offset[axis] = readFloat(s, what + " offset");
+            require(s, "]", "to close the " + what);
+        }
+        face.valve.rotate = readFloat(s, "texture rotation " + where, true);
+        face.valve.scale[0] = readFloat(s, "texture scale S " + where, true);
+        face.valve.scale[1] = readFloat(s, "texture scale T " + where, true);
+        return;
+    }
+    double shift = 0;
+    if (!parseNumber(s.token(), shift))
+        s.fail("expected a number for the texture shift S " + where + ", found '" + shown(s.token()) + "'");
+    face.projection = TexProjection::Standard;
+    face.standard.shift[0] = static_cast<float>(shift);
+    face.standard.shift[1] = readFloat(s, "texture shift T " + where, true);
+    face.standard.rotate = readFloat(s, "texture rotation " + where, true);
+    face.standard.scale[0] = readFloat(s, "texture scale S " + where, true);
+    face.standard.scale[1] = readFloat(s, "texture scale T " + where, true);
+}
+
+}  // namespace
+
+MapBrush parseClassicBrush(Script& s, const PrimitiveContext& ctx) {
+    MapBrush brush;
+    for (;;) {
+        const std::string where = faceWhere(ctx, brush.faces.size());
+        BrushFace face;
+        readPlanePoints(s, face, where, true);
+        face.texture = readTextureName(s, where);
+        readClassicProjection(s, face, where);
+        readOptionalFlags(s, face, where);
+        brush.faces.push_back(std::move(face));
+
+        if (!s.next(true)) s.fail("unexpected end of file inside " + ctx.describe() + " (missing '}')");
+        if (!s.tokenWasQuoted() && s.token() == "}") break;
+        if (s.tokenWasQuoted() || s.token() != "(")
+            s.fail("expected '(' to start a face or '}' to close " + ctx.describe() + ", found '" + shown(s.token()) + "'");
+    }
+    return brush;
+}
+
+MapBrush parseBrushDef(Script& s, const PrimitiveContext& ctx) {
+    MapBrush brush;
+    brush.brushPrimitive = true;
+    require(s, "{", "after brushDef in " + ctx.describe());
+    for (;;) {
+        if (!s.next(true)) s.fail("unexpected end of file inside brushDef of " + ctx.describe() + " (missing '}')");
+        if (!s.tokenWasQuoted() && s.token() == "}") break;
+        if (s.tokenWasQuoted() || s.token() != "(") {
+            // Editors may store brush key/value pairs before the faces; the compiler ignores them.
+            if (!s.tokenWasQuoted() && (s.token() == "{" || s.token() == ")"))
+                s.fail("expected '(' to start a face or '}' to close brushDef of " + ctx.describe() + ", found '" +
+                       shown(s.token()) + "'");
+            const std::string key = s.token();
+            if (!s.next(false))
+                s.fail("expected '(' to start a face or '}' to close brushDef of " + ctx.describe() + ", found '" +
+                       shown(key) + "'");
+            continue;
+        }
+        const std::string where = faceWhere(ctx, brush.faces.size());
+        BrushFace face;
+        readPlanePoints(s, face, where, true);
+        face.projection = TexProjection::BrushPrimitive;
+        require(s, "(", "to open the texture matrix " + where);
+        for (int row = 0; row < 2; ++row) {
+            require(s, "(", "to open texture matrix row " + std::to_string(row + 1) + " " + where);
+            for (int col = 0; col < 3; ++col) face.primitive.matrix[row][col] = readFloat(s, "texture matrix " + where);
+            require(s, ")", "to close texture matrix row " + std::to_string(row + 1) + " " + where);
+        }
+        require(s, ")", "to close the texture matrix " + where);
+        face.texture = readTextureName(s, where);
+        readOptionalFlags(s, face, where);
+        brush.faces.push_back(std::move(face));
+    }
+    return brush;
+}
+
+}  // namespace q3::map::detail

@@ -1,0 +1,55 @@
+// The shader table of a game: every scripts/*.shader of the VFS, shader lists first.
+#include <algorithm>
+
+#include "script.h"
+#include "shader_loader.h"
+#include "vfs.h"
+
+namespace q3 {
+namespace {
+
+std::string bytesToText(const std::vector<uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
+
+bool containsNoCase(const std::vector<std::string>& list, std::string_view item) {
+    return std::any_of(list.begin(), list.end(), [&](const std::string& s) { return equalsNoCase(s, item); });
+}
+
+}  // namespace
+
+ShaderTable loadShaderTable(const Vfs& vfs, Log& log) {
+    const std::string scriptDir = "scripts";
+    const std::string listPath = scriptDir + "/shaderlist.txt";
+
+    std::vector<std::string> listed;
+    std::vector<std::vector<uint8_t>> lists = vfs.readAll(listPath);
+    for (const std::vector<uint8_t>& bytes : lists)
+        for (std::string& name : parseShaderList(bytesToText(bytes), listPath, scriptDir))
+            if (!containsNoCase(listed, name)) listed.push_back(std::move(name));
+
+    std::vector<std::string> order = shaderScriptLoadOrder(vfs.list(scriptDir, "shader"), listed, log);
+    std::vector<ShaderScriptSource> scripts;
+    scripts.reserve(order.size());
+    for (const std::string& path : order) {
+        std::optional<std::vector<uint8_t>> bytes = vfs.read(path);
+        if (!bytes) continue;
+        ShaderScriptSource source;
+        source.path = path;
+        source.displayName = vfs.sourceOf(path).value_or(path);
+        source.text = bytesToText(*bytes);
+        scripts.push_back(std::move(source));
+    }
+    ShaderTable table = buildShaderTable(scripts, listed, !lists.empty(), log);
+    if (table.hasShaderList()) {
+        size_t named = std::count_if(table.files().begin(), table.files().end(),
+                                     [](const ShaderTable::SourceFile& f) { return f.inShaderList; });
+        if (named < table.files().size())
+            log.info(listPath + " names " + std::to_string(named) + " of " + std::to_string(table.files().size()) +
+                     " shader files; all of them are loaded");
+    }
+    log.info(std::to_string(table.files().size()) + " shader files, " + std::to_string(table.size()) + " shaders" +
+             (table.duplicateCount() ? " (" + std::to_string(table.duplicateCount()) + " duplicate definitions ignored)"
+                                     : std::string()));
+    return table;
+}
+
+}  // namespace q3

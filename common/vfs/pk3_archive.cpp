@@ -1,0 +1,95 @@
+// Zip archives through minizip's unzip API.
+#include "pk3_archive.h"
+
+#include <algorithm>
+#include <memory>
+
+#include <unzip.h>
+
+#include "file_io.h"
+#include "vfs.h"
+
+namespace q3 {
+
+namespace {
+
+struct ZipCloser {
+    void operator()(void* handle) const { unzClose(handle); }
+};
+using ZipHandle = std::unique_ptr<void, ZipCloser>;
+
+ZipHandle openZip(const std::filesystem::path& path) { return ZipHandle(unzOpen64(path.string().c_str())); }
+
+}  // namespace
+
+std::optional<Pk3Archive> Pk3Archive::open(const std::filesystem::path& path, std::string& error) {
+    ZipHandle zip = openZip(path);
+    if (!zip) {
+        error = "not a readable zip archive (corrupt or truncated)";
+        return std::nullopt;
+    }
+    Pk3Archive archive;
+    archive.path_ = path;
+    int status = unzGoToFirstFile(zip.get());
+    while (status == UNZ_OK) {
+        unz_file_info64 info{};
+        char name[1024];
+        if (unzGetCurrentFileInfo64(zip.get(), &info, name, sizeof name, nullptr, 0, nullptr, 0) != UNZ_OK) {
+            error = "unreadable central directory record";
+            return std::nullopt;
+        }
+        unz64_file_pos position{};
+        unzGetFilePos64(zip.get(), &position);
+        std::string entryName(name);
+        std::string key = normalizeVfsPath(entryName);
+        if (!key.empty() && key.back() != '/') {
+            // A name stored twice (differing only in case) keeps its first record.
+            archive.entries_.try_emplace(key, Entry{entryName, position.pos_in_zip_directory, position.num_of_file,
+                                                    info.uncompressed_size});
+        }
+        status = unzGoToNextFile(zip.get());
+    }
+    if (status != UNZ_END_OF_LIST_OF_FILE) {
+        error = "damaged central directory";
+        return std::nullopt;
+    }
+    return archive;
+}
+
+const Pk3Archive::Entry* Pk3Archive::find(const std::string& normalizedName) const {
+    auto it = entries_.find(normalizedName);
+    return it == entries_.end() ? nullptr : &it->second;
+}
+
+std::vector<uint8_t> Pk3Archive::read(const Entry& entry) const {
+    auto fail = [&](const std::string& what) -> FileError {
+        return FileError(path_.string() + ": cannot read " + entry.name + ": " + what);
+    };
+    ZipHandle zip = openZip(path_);
+    if (!zip) throw fail("archive can no longer be opened");
+    unz64_file_pos position{entry.directoryOffset, entry.fileNumber};
+    if (unzGoToFilePos64(zip.get(), &position) != UNZ_OK) throw fail("entry not found");
+    if (unzOpenCurrentFile(zip.get()) != UNZ_OK) throw fail("bad local header or unsupported compression");
+    // Grow while reading rather than trusting the declared size, which a damaged archive may inflate.
+    std::vector<uint8_t> bytes;
+    bytes.reserve(size_t(std::min<uint64_t>(entry.size, 64u << 20)));
+    uint8_t chunk[65536];
+    for (;;) {
+        int got = unzReadCurrentFile(zip.get(), chunk, sizeof chunk);
+        if (got < 0) {
+            unzCloseCurrentFile(zip.get());
+            throw fail(got == UNZ_CRCERROR ? "CRC mismatch" : "compressed data is damaged or truncated");
+        }
+        if (got == 0) break;
+        bytes.insert(bytes.end(), chunk, chunk + got);
+        if (bytes.size() > entry.size) break;
+    }
+    const int closeStatus = unzCloseCurrentFile(zip.get());
+    if (bytes.size() != entry.size)
+        throw fail("size " + std::to_string(bytes.size()) + " does not match the declared " + std::to_string(entry.size));
+    if (closeStatus == UNZ_CRCERROR) throw fail("CRC mismatch");
+    if (closeStatus != UNZ_OK) throw fail("compressed data is damaged or truncated");
+    return bytes;
+}
+
+}  // namespace q3

@@ -1,0 +1,57 @@
+// Helpers shared by the BSP reader, writer and validator (not part of the public interface).
+#pragma once
+
+#include "bspfile.h"
+
+#include <bit>
+#include <cstring>
+
+namespace q3::bsp::detail {
+
+static_assert(std::endian::native == std::endian::little, "BSP records are read in place: little-endian hosts only");
+
+// "<file>: <lump>: <what>" as a BspError.
+[[noreturn]] void fail(const std::string& file, std::string_view where, const std::string& what);
+[[noreturn]] void failLump(const std::string& file, int lump, const std::string& what);
+
+// Header size in bytes for a given number of lump entries.
+constexpr size_t headerBytes(int entries) { return 8 + 8 * static_cast<size_t>(entries); }
+
+constexpr size_t alignUp4(size_t n) { return (n + 3) & ~size_t(3); }
+
+inline int32_t loadI32(const uint8_t* p) {
+    int32_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline uint32_t loadU32(const uint8_t* p) {
+    uint32_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void appendU32(std::vector<uint8_t>& out, uint32_t v) {
+    uint8_t b[4];
+    std::memcpy(b, &v, sizeof v);
+    out.insert(out.end(), b, b + 4);
+}
+inline void padTo4(std::vector<uint8_t>& out) { out.resize(alignUp4(out.size()), 0); }
+
+// Copies a byte range into a vector of records; the caller has checked the length.
+template <typename T>
+std::vector<T> recordsFrom(const uint8_t* data, size_t bytes) {
+    std::vector<T> out(bytes / sizeof(T));
+    if (!out.empty()) std::memcpy(out.data(), data, out.size() * sizeof(T));
+    return out;
+}
+template <typename T>
+std::vector<uint8_t> bytesOf(const std::vector<T>& records) {
+    const auto* p = reinterpret_cast<const uint8_t*>(records.data());
+    return std::vector<uint8_t>(p, p + records.size() * sizeof(T));
+}
+
+// BSPX trailer: parse the directory found at `start` (already known to hold "BSPX"), and append
+// one after the lumps of `out` (which must be 4-byte aligned in size).
+std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name);
+void appendBspxTrailer(std::vector<uint8_t>& out, const std::vector<BspxLump>& lumps, const std::string& name);
+
+}  // namespace q3::bsp::detail

@@ -1,0 +1,122 @@
+// Codec of the SH light grid lump. Bytes are assembled explicitly so the file format stays
+// little-endian whatever the host byte order.
+#include "sh_grid_lump.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace q3::sh {
+namespace {
+
+uint32_t readU32(const uint8_t* p) {
+    return uint32_t(p[0]) | (uint32_t(p[1]) << 8) | (uint32_t(p[2]) << 16) | (uint32_t(p[3]) << 24);
+}
+int32_t readI32(const uint8_t* p) {
+    const uint32_t u = readU32(p);
+    int32_t v;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+}
+float readF32(const uint8_t* p) {
+    const uint32_t u = readU32(p);
+    float v;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+}
+void writeU32(uint8_t* p, uint32_t u) {
+    p[0] = uint8_t(u);
+    p[1] = uint8_t(u >> 8);
+    p[2] = uint8_t(u >> 16);
+    p[3] = uint8_t(u >> 24);
+}
+void writeF32(uint8_t* p, float v) {
+    uint32_t u;
+    std::memcpy(&u, &v, sizeof u);
+    writeU32(p, u);
+}
+
+const char* axisName(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
+
+}  // namespace
+
+std::string checkGridLump(const uint8_t* data, size_t size) {
+    if (data == nullptr && size != 0) return "SH grid lump: no data";
+    if (size < kGridHeaderBytes)
+        return "SH grid lump: " + std::to_string(size) + " bytes is shorter than its " +
+               std::to_string(kGridHeaderBytes) + "-byte header";
+    for (int axis = 0; axis < 3; ++axis) {
+        const float mins = readF32(data + 4 * axis);
+        const float cell = readF32(data + 12 + 4 * axis);
+        if (!std::isfinite(mins))
+            return std::string("SH grid lump: gridMins ") + axisName(axis) + " is not finite";
+        if (!std::isfinite(cell) || !(cell > 0.0f))
+            return std::string("SH grid lump: gridSize ") + axisName(axis) + " = " +
+                   std::to_string(cell) + " is not a positive finite cell size";
+    }
+    int64_t expectedPoints = 1;
+    for (int axis = 0; axis < 3; ++axis) {
+        const int32_t bound = readI32(data + 24 + 4 * axis);
+        if (bound <= 0)
+            return std::string("SH grid lump: gridBounds ") + axisName(axis) + " = " +
+                   std::to_string(bound) + " is not positive";
+        expectedPoints *= bound;  // at most (2^31)^3 < 2^93: checked against 2^31 after each step
+        if (expectedPoints > INT32_MAX)
+            return "SH grid lump: gridBounds multiply to more than 2^31 points";
+    }
+    const int32_t numPoints = readI32(data + 36);
+    if (numPoints != expectedPoints)
+        return "SH grid lump: numPoints " + std::to_string(numPoints) + " != gridBounds product " +
+               std::to_string(expectedPoints);
+    const uint64_t expectedBytes = kGridHeaderBytes + uint64_t(kGridPointBytes) * uint64_t(expectedPoints);
+    if (uint64_t(size) != expectedBytes)
+        return "SH grid lump: length " + std::to_string(size) + " != 40 + 108 * " +
+               std::to_string(expectedPoints) + " = " + std::to_string(expectedBytes);
+    const uint8_t* coeffs = data + kGridHeaderBytes;
+    const size_t floatCount = size_t(expectedPoints) * 27;
+    for (size_t i = 0; i < floatCount; ++i) {
+        if (!std::isfinite(readF32(coeffs + 4 * i)))
+            return "SH grid lump: point " + std::to_string(i / 27) + " coefficient " +
+                   std::to_string((i % 27) / 3) + " channel " + std::to_string(i % 3) +
+                   " is not finite";
+    }
+    return {};
+}
+
+bool decodeGridLump(const uint8_t* data, size_t size, GridSH& out, std::string& error) {
+    error = checkGridLump(data, size);
+    if (!error.empty()) return false;
+    GridSH grid;
+    for (int axis = 0; axis < 3; ++axis) {
+        grid.mins[axis] = readF32(data + 4 * axis);
+        grid.size[axis] = readF32(data + 12 + 4 * axis);
+        grid.bounds[axis] = readI32(data + 24 + 4 * axis);
+    }
+    const size_t numPoints = size_t(readI32(data + 36));
+    grid.points.resize(numPoints);
+    const uint8_t* p = data + kGridHeaderBytes;
+    for (GridPointSH& point : grid.points) {
+        for (int i = 0; i < 9; ++i)
+            for (int c = 0; c < 3; ++c, p += 4) point.coeffs[i][c] = readF32(p);
+    }
+    out = std::move(grid);
+    return true;
+}
+
+std::vector<uint8_t> encodeGridLump(const GridSH& grid) {
+    std::vector<uint8_t> bytes(kGridHeaderBytes + kGridPointBytes * grid.points.size());
+    uint8_t* p = bytes.data();
+    for (int axis = 0; axis < 3; ++axis) {
+        writeF32(p + 4 * axis, grid.mins[axis]);
+        writeF32(p + 12 + 4 * axis, grid.size[axis]);
+        writeU32(p + 24 + 4 * axis, uint32_t(grid.bounds[axis]));
+    }
+    writeU32(p + 36, uint32_t(grid.points.size()));
+    p += kGridHeaderBytes;
+    for (const GridPointSH& point : grid.points) {
+        for (int i = 0; i < 9; ++i)
+            for (int c = 0; c < 3; ++c, p += 4) writeF32(p, point.coeffs[i][c]);
+    }
+    return bytes;
+}
+
+}  // namespace q3::sh

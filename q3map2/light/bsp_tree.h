@@ -1,0 +1,85 @@
+// Point queries against a compiled BSP: which leaf, cluster and area a point is in, PVS visibility
+// between clusters, and whether a point lies inside an opaque world brush (q3map2's
+// ClusterForPointExt), with a deterministic search for a nearby free point.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "bspfile.h"
+#include "vec3.h"
+
+namespace q3::light {
+
+// Content and surface flags of Quake 3 used to decide which brushes stop light.
+namespace contents {
+constexpr int32_t kSolid = 0x1;
+constexpr int32_t kLava = 0x8;
+constexpr int32_t kSlime = 0x10;
+constexpr int32_t kWater = 0x20;
+constexpr int32_t kFog = 0x40;
+constexpr int32_t kAreaPortal = 0x8000;
+constexpr int32_t kPlayerClip = 0x10000;
+constexpr int32_t kMonsterClip = 0x20000;
+constexpr int32_t kClusterPortal = 0x100000;
+constexpr int32_t kDoNotEnter = 0x200000;
+constexpr int32_t kBotClip = 0x400000;
+constexpr int32_t kOrigin = 0x1000000;
+constexpr int32_t kTranslucent = 0x20000000;
+constexpr int32_t kTrigger = 0x40000000;
+constexpr int32_t kNoDrop = int32_t(0x80000000u);
+constexpr int32_t kSurfLightFilter = 0x8000;
+constexpr int32_t kSurfAlphaShadow = 0x10000;
+}  // namespace contents
+
+// q3map2 marks a brush opaque to light unless one of its sides' shaders has the C_TRANSLUCENT compile
+// flag. From the BSP alone that flag shows as these content / surface flags (surfaceparm trans,
+// water, slime, lava, the clips, triggers, portals, origin, nodrop, alphashadow, lightfilter).
+bool shaderIsTranslucent(const bsp::Shader& shader);
+
+class BspTree {
+public:
+    // Keeps a reference to `bsp`, which must outlive the tree. `translucentShaders`, when not empty,
+    // overrides shaderIsTranslucent per BSP shader index (the caller knows the real compile flags
+    // from the shader scripts).
+    explicit BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShaders = {});
+
+    // Leaf containing the point. Points within 0.1 units of a node plane try the front side first
+    // and keep it when its leaf has a cluster (q3map2 PointInLeafNum). Without nodes: leaf 0, or -1
+    // when there are no leafs either.
+    int leafForPoint(Vec3 point) const;
+    int clusterForPoint(Vec3 point) const;  // -1 outside the world
+    int areaForPoint(Vec3 point) const;     // -1 outside the world
+
+    int numClusters() const;
+    // PVS test; true when the visibility lump is absent (not vised), false for a negative cluster.
+    bool clusterVisible(int from, int to) const;
+
+    bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
+
+    // q3map2 ClusterForPointExt: the point's cluster, -1 outside the world, or -1 - brush when the
+    // point is inside an opaque world brush of its leaf (every side plane distance <= epsilon).
+    int clusterForPointExt(Vec3 point, float epsilon) const;
+    // Outside the world or inside an opaque brush.
+    bool pointInSolid(Vec3 point, float epsilon = 0.0f) const { return clusterForPointExt(point, epsilon) < 0; }
+
+    // Nearest point (from a fixed lattice of offsets `step` apart within `radius`, nearest first, ties
+    // in a fixed order) that is not in solid; nullopt when every candidate is. Deterministic.
+    std::optional<Vec3> nudgeOutOfSolid(Vec3 point, float radius, float step, float epsilon = 0.0f) const;
+    // The same search over offsets computed once with nudgeOffsets() (for many points).
+    std::optional<Vec3> nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon = 0.0f) const;
+
+private:
+    const bsp::Bsp& bsp_;
+    std::vector<uint8_t> opaque_;  // per brush
+    int numClusters_ = 0;
+    int bytesPerCluster_ = 0;
+};
+
+// The fixed offsets tried by nudgeOutOfSolid: every lattice point k*step (|k| <= radius/step per
+// axis) within `radius`, sorted by length, then z, y, x. Exposed for tests and other searches.
+std::vector<Vec3> nudgeOffsets(float radius, float step);
+
+}  // namespace q3::light

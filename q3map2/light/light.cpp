@@ -1,0 +1,130 @@
+// The -light stage driver: load -> scene -> lights -> lightmaps -> vertex light -> legacy grid ->
+// write. Each step is a function of the LightContext (light_context.h); this file only sequences
+// them, times them and writes the result.
+#include <chrono>
+#include <cstring>
+
+#include "file_io.h"
+#include "light_context.h"
+#include "light_stage.h"
+#include "light_text.h"
+#include "map_file.h"
+#include "shader_info.h"
+#include "shader_loader.h"
+#include "vfs.h"
+
+namespace q3::light {
+namespace {
+
+constexpr const char* kVersion = "q3map2-cpp 0.1.0 (q3map2 2.5.17n compatible)";
+
+// Light entities of the .map source (q3map2 re-reads them because -bsp strips them from the BSP),
+// and the entities they may target.
+void loadMapLights(LightContext& ctx, Log& log) {
+    std::filesystem::path mapPath = ctx.bspPath;
+    mapPath.replace_extension(".map");
+    if (!std::filesystem::exists(mapPath)) {
+        log.info(strCat("no ", mapPath.string(), ": using the light entities of the BSP only"));
+        return;
+    }
+    map::MapFile mapFile = map::loadMap(mapPath);
+    for (const map::MapEntity& e : mapFile.entities) {
+        bsp::Entity entity;
+        entity.pairs = e.pairs;
+        if (map::isLightEntity(e))
+            ctx.mapLights.push_back(std::move(entity));
+        else if (e.find("targetname"))
+            ctx.mapTargets.push_back(std::move(entity));
+    }
+    log.info(strCat(ctx.mapLights.size(), " light entities read from ", mapPath.string()));
+}
+
+// Where the command line is recorded (q3map2 InjectCommandLine): appended to earlier stages'.
+void injectCommandLine(bsp::Entity& worldspawn, const std::string& commandLine) {
+    std::string value = worldspawn.value("_q3map2_cmdline");
+    std::string line = "q3map2 " + commandLine;
+    value = value.empty() ? line : value + "; " + line;
+    worldspawn.set("_q3map2_cmdline", value);
+    worldspawn.set("_q3map2_version", kVersion);
+}
+
+template <typename F>
+void timed(LightContext& ctx, Log& log, const char* name, F&& step) {
+    log.info(strCat("--- ", name, " ---"));
+    const auto start = std::chrono::steady_clock::now();
+    step();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ctx.stats.phases.push_back({name, seconds});
+}
+
+}  // namespace
+
+void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
+    ctx.bspPath = common.mapPath;
+    ctx.bspPath.replace_extension(".bsp");
+    ctx.commandLine = common.commandLine;
+    ctx.threads = common.threads;
+
+    VfsOptions vfsOptions;
+    vfsOptions.game = common.game;
+    for (const std::string& p : common.basePaths) vfsOptions.basePaths.emplace_back(p);
+    if (!common.fsGame.empty()) vfsOptions.gameDirs.push_back(common.fsGame);
+    if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
+    vfsOptions.mapPath = ctx.bspPath;
+    ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
+    ctx.shaderTable = std::make_unique<ShaderTable>(loadShaderTable(*ctx.vfs, log));
+
+    std::filesystem::path srfPath = ctx.bspPath;
+    srfPath.replace_extension(".srf");
+    ctx.extras = loadSurfaceExtras(srfPath, ctx.options.sampleSize);
+    if (!ctx.extras.loaded) log.info(strCat("no ", srfPath.string(), ": surfaces use default sample sizes"));
+
+    ctx.bsp = bsp::readBsp(ctx.bspPath, bsp::ReadOptions{common.force, true});
+    ctx.entities = bsp::parseEntities(ctx.bsp.entities, ctx.bspPath.string());
+    if (ctx.entities.empty()) throw CompileError(ctx.bspPath.string() + ": entities: no worldspawn entity");
+    ctx.world = readWorldLighting(ctx.entities[0]);
+    if (!ctx.world.keepLights) loadMapLights(ctx, log);
+
+    ctx.shaders = resolveLightingShaders(ctx.bsp, *ctx.shaderTable, ctx.vfs.get(), log);
+    if (ctx.shaders.missingImages > 0)
+        log.info(strCat(ctx.shaders.missingImages, " shaders without a light image"));
+    ctx.scales = lightScalesFromOptions(ctx.options);
+    ctx.color = colorOptionsFromOptions(ctx.options, ctx.world.maxLight);
+}
+
+void writeLitBsp(LightContext& ctx, Log& log) {
+    injectCommandLine(ctx.entities[0], ctx.commandLine);
+    ctx.bsp.entities = bsp::unparseEntities(ctx.entities);
+    writeFileAtomic(ctx.bspPath, bsp::serializeBsp(ctx.bsp));
+    log.info(strCat("wrote ", ctx.bspPath.string()));
+}
+
+int runLightStage(const LightOptions& options, const CommonOptions& common, Log& log) {
+    LightContext ctx;
+    ctx.options = options;
+    const auto start = std::chrono::steady_clock::now();
+
+    timed(ctx, log, "load", [&] { loadLightInputs(ctx, common, log); });
+    timed(ctx, log, "scene", [&] {
+        buildSurfaceGeometry(ctx);
+        buildScene(ctx);
+        log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
+    });
+    timed(ctx, log, "lights", [&] { createLights(ctx, log); });
+    if (!options.noLightmaps) timed(ctx, log, "lightmaps", [&] { lightLightmaps(ctx, log); });
+    timed(ctx, log, "vertex light", [&] { lightVertexes(ctx, log); });
+    // Bounce, dirt and deluxe maps plug in here; the SH grid (SetupGridSH / TraceGridSH) runs
+    // beside the legacy grid from the same light list.
+    if (!options.noGrid) timed(ctx, log, "light grid", [&] { lightGrid(ctx, log); });
+    timed(ctx, log, "write", [&] { writeLitBsp(ctx, log); });
+
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log.info(strCat(ctx.stats.lightmaps, " raw lightmaps, ", ctx.stats.luxels, " luxels, ", ctx.stats.vertexes,
+                    " vertexes, ", ctx.stats.gridPoints, " grid points, ",
+                    ctx.scene ? ctx.scene->raysTraced() : 0, " rays traced"));
+    for (const PhaseStats& p : ctx.stats.phases) log.info(strCat(p.name, ": ", p.seconds, " s"));
+    log.info(strCat("light stage: ", total, " s, ", log.warningCount(), " warnings"));
+    return 0;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,108 @@
+// The state that flows through the -light pipeline, step by step: inputs are loaded into it, the
+// scene and light list are built from them, and the lighting steps write their results into the
+// BSP it holds. Each step is a free function of this struct so that it can be run and tested alone.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bsp_tree.h"
+#include "bspfile.h"
+#include "color_pipeline.h"
+#include "light_contribution.h"
+#include "light_options.h"
+#include "light_shaders.h"
+#include "lights.h"
+#include "common_options.h"
+#include "log.h"
+#include "shader_info.h"
+#include "srf_file.h"
+#include "trace_scene.h"
+#include "vfs.h"
+
+namespace q3::light {
+
+// Time and work of one pipeline phase, for the closing summary.
+struct PhaseStats {
+    std::string name;
+    double seconds = 0;
+};
+
+struct LightStats {
+    uint64_t luxels = 0;          // super luxels lit
+    uint64_t vertexes = 0;        // draw vertices lit
+    uint64_t gridPoints = 0;      // grid points lit
+    uint64_t gridPointsInSolid = 0;  // grid points left dark (no free point nearby)
+    uint64_t lightmaps = 0;       // raw lightmaps
+    uint64_t droppedStyledLight = 0;  // contributions of styles other than 0 (not stored in IBSP)
+    std::vector<PhaseStats> phases;
+};
+
+struct LightContext {
+    LightOptions options;
+    int threads = 0;  // 0 = one per core
+
+    // Inputs.
+    std::filesystem::path bspPath;
+    std::string commandLine;
+    bsp::Bsp bsp;
+    std::vector<bsp::Entity> entities;   // of the BSP; written back
+    std::vector<bsp::Entity> mapLights;  // light entities re-read from the .map (never written back)
+    std::vector<bsp::Entity> mapTargets; // other .map entities with a targetname (spotlight targets)
+    std::unique_ptr<Vfs> vfs;
+    std::unique_ptr<ShaderTable> shaderTable;
+    SurfaceExtras extras;
+    LightingShaderSet shaders;           // one per BSP shader
+    WorldLighting world;
+
+    // Scene.
+    std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
+    std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
+    std::vector<int> skyIndices;         // per BSP shader
+    std::unique_ptr<BspTree> tree;
+    std::unique_ptr<TraceScene> scene;
+    std::vector<Light> lights;
+
+    // Settings derived from the options.
+    LightScales scales;
+    ColorOptions color;
+
+    // Vertex light taken from finished lightmaps (per draw vertex; `vertexLit` false = trace it).
+    std::vector<Vec3> vertexLight;
+    std::vector<uint8_t> vertexFromLightmap;
+
+    LightStats stats;
+};
+
+// Options -> light scales, colour options (the -scale multiplier applied to every light scale).
+LightScales lightScalesFromOptions(const LightOptions& options);
+ColorOptions colorOptionsFromOptions(const LightOptions& options, float maxLight);
+
+// Pipeline steps, in order. Each reads what earlier steps left in the context.
+// Shaders, .srf, BSP, entities and (unless worldspawn _keepLights) the .map's light entities.
+void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log);
+// World-space geometry of every surface: bmodel origins applied, patches tessellated.
+void buildSurfaceGeometry(LightContext& ctx);
+// Sky indices, the Embree scene and the BSP tree (clusters, PVS, solidity).
+void buildScene(LightContext& ctx);
+// The light list: entity lights of the BSP and the .map, shader suns, skies and surface lights.
+void createLights(LightContext& ctx, Log& log);
+// Lightmaps of every lightmapped surface, packed into the BSP (or external pages).
+void lightLightmaps(LightContext& ctx, Log& log);
+// Vertex colours of every draw vertex.
+void lightVertexes(LightContext& ctx, Log& log);
+// The legacy light grid (lump 15); returns the grid size written back to worldspawn when it grew.
+void lightGrid(LightContext& ctx, Log& log);
+// Worldspawn gains _q3map2_cmdline / _q3map2_version; the BSP is written atomically.
+void writeLitBsp(LightContext& ctx, Log& log);
+// Seams for the later stages: SH grid (SetupGridSH / TraceGridSH), bounce, dirt and deluxe maps
+// plug in between lightVertexes and lightGrid, reading the same context.
+
+// Environment used to light luxels and vertices (scene, tree, settings).
+LightingEnv surfaceLightingEnv(const LightContext& ctx);
+LightingEnv gridLightingEnv(const LightContext& ctx);
+
+}  // namespace q3::light

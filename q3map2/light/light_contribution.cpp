@@ -1,0 +1,303 @@
+// Light contributions to luxels, vertices and grid points (see light_contribution.h).
+#include "light_contribution.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bsp_tree.h"
+#include "trace_scene.h"
+
+namespace q3::light {
+namespace {
+
+constexpr float kLinearScale = 1.0f / 8000.0f;
+constexpr float kMinDistance = 16.0f;   // q3map2 clamps distances to avoid hot spots
+constexpr float kSpotFadeWidth = 32.0f;  // spot cones fade over their last 32 units
+
+float clampedDistance(float dist, float extraDist) {
+    return std::max(kMinDistance, std::sqrt(dist * dist + extraDist * extraDist));
+}
+
+bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
+    return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
+}
+
+// Spot cone factor of q3map2 (1 inside, linear fade over the last 32 units, 0 outside), or
+// nullopt when the point is behind the spotlight or outside its cone.
+std::optional<float> spotFactor(const Light& light, Vec3 point) {
+    const Vec3 displacement = light.origin - point;
+    const float distByNormal = -dot(displacement, light.normal);
+    if (distByNormal < 0) return std::nullopt;
+    const Vec3 pointAtDist = light.origin + light.normal * distByNormal;
+    const float radiusAtDist = light.radiusByDist * distByNormal;
+    const float sampleRadius = length(point - pointAtDist);
+    if (sampleRadius >= radiusAtDist) return std::nullopt;
+    if (sampleRadius > radiusAtDist - kSpotFadeWidth)
+        return std::max(0.f, (radiusAtDist - sampleRadius) / kSpotFadeWidth);
+    return 1.0f;
+}
+
+float angleTerm(float dot, bool twoSided, bool halfLambert) {
+    if (twoSided && dot < 0) dot = -dot;
+    if (halfLambert) {
+        if (dot > 0.001f) {
+            dot = std::min(dot, 1.0f) * 0.5f + 0.5f;
+            dot *= dot;
+        } else {
+            dot = 0;
+        }
+    }
+    return dot;
+}
+
+Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
+    if (!env.scene) return {1, 1, 1};
+    return env.scene->transmission(from, to, env.settings.ignoreNear);
+}
+
+Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
+    if (!env.scene) return {1, 1, 1};
+    return env.scene->skyTransmission(from, sun.normal, sun.skyIndex, env.settings.ignoreNear);
+}
+
+std::optional<LightContribution> finish(const Light& light, Vec3 color, Vec3 direction, Vec3 transmission) {
+    Vec3 c = color * transmission;
+    if (c == Vec3{}) return std::nullopt;
+    return LightContribution{c, direction, light.style};
+}
+
+// Controlled model; `normal` null for grid points (no incidence term).
+std::optional<LightContribution> controlledContribution(const Light& light, Vec3 point, const Vec3* normal,
+                                                        bool twoSided, const LightingEnv& env) {
+    const ControlledParams& p = *light.controlled;
+    if (light.type == LightType::Sun) {
+        const Vec3 l = light.normal;
+        float incidence = 1;
+        if (normal) {
+            float c = dot(*normal, l);
+            if (twoSided && c < 0) c = -c;
+            if (c <= 0) return std::nullopt;
+            incidence = c;  // suns force dot_product_weight 1
+        }
+        Vec3 value = light.color * (255.0f * p.brightness * incidence);
+        if (value == Vec3{}) return std::nullopt;
+        return finish(light, value, l, skyOcclusion(env, light, point));
+    }
+    const Vec3 toLight = light.origin - point;
+    const float d = length(toLight);
+    const float falloff = controlledFalloff(p, d);
+    if (falloff <= 0) return std::nullopt;
+    const Vec3 l = d > 0 ? toLight / d : Vec3{0, 0, 1};
+    const float cone = light.type == LightType::Spot ? controlledCone(p, light.normal, l) : 1.0f;
+    if (cone <= 0) return std::nullopt;
+    float incidence = 1;
+    if (normal) {
+        float c = dot(*normal, l);
+        if (twoSided && c < 0) c = -c;
+        incidence = controlledIncidence(p, c);
+        if (incidence <= 0) return std::nullopt;
+    }
+    Vec3 value = light.color * (255.0f * p.brightness * falloff * cone * incidence);
+    if (value == Vec3{}) return std::nullopt;
+    return finish(light, value, l, occlusion(env, point, light.origin));
+}
+
+}  // namespace
+
+float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
+    const size_t n = winding.size();
+    if (n < 3) return 0;
+    std::vector<Vec3> dirs(n);
+    for (size_t i = 0; i < n; ++i) dirs[i] = normalize(winding[i] - point);
+    double total = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3 a = dirs[i];
+        const Vec3 b = dirs[(i + 1) % n];
+        Vec3 triNormal = cross(a, b);
+        const float len = length(triNormal);
+        if (len < 0.0001f) continue;
+        triNormal = triNormal / len;
+        const double angle = std::acos(std::clamp(static_cast<double>(dot(a, b)), -1.0, 1.0));
+        total += static_cast<double>(dot(normal, triNormal)) * angle;
+        if (total > 6.3 || total < -6.3) return 0;  // numerically broken polygon
+    }
+    return static_cast<float>(total / (2.0 * kPiD));
+}
+
+float controlledFalloff(const ControlledParams& p, float d) {
+    if (d <= p.falloffStart) return 1;
+    if (d >= p.falloffEnd) return 0;
+    const float lin = 1 - (d - p.falloffStart) / (p.falloffEnd - p.falloffStart);
+    const float s = std::max(p.falloffStart, kMinDistance);
+    const float e = p.falloffEnd;
+    const float see = (s * s) / (e * e);
+    float isq = see < 1 ? ((s * s) / (d * d) - see) / (1 - see) : lin;
+    isq = std::clamp(isq, 0.f, 1.f);
+    const float c = p.falloffCurvature;
+    return (1 - c) * lin + c * isq;
+}
+
+float controlledCone(const ControlledParams& p, Vec3 spotAxis, Vec3 towardsLight) {
+    const float cosAngle = std::clamp(dot(-towardsLight, spotAxis), -1.f, 1.f);
+    const float angle = std::acos(cosAngle) * (180.0f / kPi);
+    const float inner = p.angleHotspot * 0.5f;
+    const float outer = p.anglePenumbra * 0.5f;
+    float cone;
+    if (angle <= inner)
+        cone = 1;
+    else if (angle >= outer)
+        cone = 0;
+    else
+        cone = 1 - (angle - inner) / (outer - inner);
+    return p.sphericalAmbient + (1 - p.sphericalAmbient) * cone;
+}
+
+float controlledIncidence(const ControlledParams& p, float cosine) {
+    if (cosine <= 0) return 0;
+    return (1 - p.dotProductWeight) + p.dotProductWeight * cosine;
+}
+
+std::optional<LightContribution> lightToSample(const Light& light, const SamplePoint& sample, const LightingEnv& env) {
+    if (!light.affectsSurfaces) return std::nullopt;
+    const Vec3 p = sample.origin;
+    const Vec3 n = sample.normal;
+    if (light.type != LightType::Sun) {
+        if (env.settings.sunOnly) return std::nullopt;
+        if (!sample.twoSided && dot(light.origin, n) - dot(p, n) < 0) return std::nullopt;  // behind the surface
+        if (pvsCulled(light, sample.cluster, env)) return std::nullopt;
+    }
+    if (light.controlled) return controlledContribution(light, p, &n, sample.twoSided, env);
+
+    const float envelope = lightEnvelope(light, env.settings.forceFast);
+    switch (light.type) {
+        case LightType::Sun: {
+            const Vec3 dir = light.normal;
+            float angle = light.angleAttenuation ? angleTerm(dot(n, dir), sample.twoSided, env.settings.lightAngleHL) : 1;
+            const float add = light.photons * angle;
+            if (add <= 0) return std::nullopt;
+            return finish(light, light.color * add, dir, skyOcclusion(env, light, p));
+        }
+        case LightType::Point:
+        case LightType::Spot: {
+            const Vec3 toLight = light.origin - p;
+            float dist = length(toLight);
+            if (dist >= envelope) return std::nullopt;
+            const Vec3 dir = dist > 0 ? toLight / dist : n;
+            dist = clampedDistance(dist, light.extraDist);
+            float angle = light.angleAttenuation ? angleTerm(dot(n, dir), sample.twoSided, env.settings.lightAngleHL) : 1;
+            if (light.angleScale != 0) angle = std::min(angle / light.angleScale, 1.0f);
+            float add = light.linear ? std::max(0.f, angle * light.photons * kLinearScale - dist * light.fade)
+                                     : std::max(0.f, light.photons / (dist * dist) * angle);
+            if (light.type == LightType::Spot) {
+                std::optional<float> cone = spotFactor(light, p);
+                if (!cone) return std::nullopt;
+                add *= *cone;
+            }
+            if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
+            return finish(light, light.color * add, dir, occlusion(env, p, light.origin));
+        }
+        case LightType::Area: {
+            const float d = dot(p, light.normal) - light.planeDist;
+            if (d < 3.0f) {
+                if (!light.twoSided && d < -1.0f) return std::nullopt;        // behind the emitter
+                if (d > -3.0f && dot(n, light.normal) > 0.9f) return std::nullopt;  // coplanar with it
+            }
+            // Points close to the emitter plane are pushed in front of it, so that surfaces meeting
+            // an emitter do not get black edges.
+            const Vec3 pushed = (d > -8.0f && d < 8.0f) ? p + light.normal * (8.0f - d) : p;
+            Vec3 target = light.origin;
+            Vec3 toLight = target - p;
+            float dist = length(toLight);
+            if (dist >= envelope) return std::nullopt;
+            Vec3 dir = dist > 0 ? toLight / dist : n;
+            float add;
+            if (env.settings.faster) {
+                float angle = dot(n, dir);
+                if (sample.twoSided && angle < 0) angle = -angle;
+                angle *= -dot(light.normal, dir);
+                if (angle == 0) return std::nullopt;
+                if (angle < 0 && (sample.twoSided || light.twoSided)) angle = -angle;
+                dist = clampedDistance(dist, light.extraDist);
+                add = light.photons / (dist * dist) * angle;
+            } else {
+                float factor = pointToPolygonFormFactor(pushed, n, light.winding);
+                if (factor == 0) return std::nullopt;
+                if (factor < 0) {
+                    if (!(sample.twoSided || light.twoSided)) return std::nullopt;
+                    factor = -factor;
+                    target = light.origin - light.normal * 2.0f;  // trace to the emitter's other side
+                    toLight = target - p;
+                    dist = length(toLight);
+                    if (dist >= envelope) return std::nullopt;
+                    dir = dist > 0 ? toLight / dist : n;
+                }
+                add = factor * light.add;
+            }
+            if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
+            return finish(light, light.color * add, dir, occlusion(env, p, target));
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
+                                                  const LightingEnv& env) {
+    if (!light.affectsGrid) return std::nullopt;
+    if (light.type != LightType::Sun) {
+        if (env.settings.sunOnly) return std::nullopt;
+        if (pvsCulled(light, cluster, env)) return std::nullopt;
+    }
+    if (light.controlled) return controlledContribution(light, origin, nullptr, false, env);
+
+    if (light.type == LightType::Sun) {
+        if (light.photons <= 0) return std::nullopt;
+        return finish(light, light.color * light.photons, light.normal, skyOcclusion(env, light, origin));
+    }
+    const Vec3 toLight = light.origin - origin;
+    float dist = length(toLight);
+    if (dist > lightEnvelope(light, env.settings.forceFast)) return std::nullopt;
+    const Vec3 dir = dist > 0 ? toLight / dist : Vec3{0, 0, 1};
+    float add = 0;
+    if (light.type == LightType::Area) {
+        if (env.settings.faster) {
+            dist = clampedDistance(dist, light.extraDist);
+            add = light.photons / (dist * dist);
+        } else {
+            const float d = dot(origin, light.normal) - light.planeDist;
+            if (!light.twoSided && d < -1.0f) return std::nullopt;
+            const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
+            float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
+            if (factor == 0) return std::nullopt;
+            if (factor < 0) {
+                if (!light.twoSided) return std::nullopt;
+                factor = -factor;
+            }
+            add = factor * light.add;
+        }
+    } else {
+        dist = clampedDistance(dist, light.extraDist);
+        add = light.linear ? std::max(0.f, light.photons * kLinearScale - dist * light.fade)
+                           : light.photons / (dist * dist);
+        if (light.type == LightType::Spot) {
+            std::optional<float> cone = spotFactor(light, origin);
+            if (!cone) return std::nullopt;
+            add *= *cone;
+        }
+    }
+    if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
+    return finish(light, light.color * add, dir, occlusion(env, origin, light.origin));
+}
+
+void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,
+                       std::vector<LightContribution>& out) {
+    for (const Light& light : lights)
+        if (std::optional<LightContribution> c = lightToSample(light, sample, env)) out.push_back(*c);
+}
+
+void gatherGridLight(std::span<const Light> lights, Vec3 origin, int cluster, const LightingEnv& env,
+                     std::vector<LightContribution>& out) {
+    for (const Light& light : lights)
+        if (std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, env)) out.push_back(*c);
+}
+
+}  // namespace q3::light

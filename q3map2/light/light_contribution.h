@@ -1,0 +1,65 @@
+// How much light one Light sends to one sample: a luxel/vertex (point + normal) or a grid point
+// (point only). q3map2's formulas (LightContributionToSample / LightContributionToPoint) for the
+// q3map2 model, the formula of specs/light-models.md for the controlled model, PVS culling, fast
+// envelopes and occlusion through the TraceScene.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "light_types.h"
+#include "lights.h"
+#include "vec3.h"
+
+namespace q3::light {
+
+class TraceScene;
+class BspTree;
+
+struct ContributionSettings {
+    bool faster = false;        // -faster: area lights as inverse square
+    bool lightAngleHL = false;  // -lightanglehl: half-Lambert angle term
+    bool sunOnly = false;       // -sunonly
+    float ignoreNear = 0;       // occluders closer than this to the sample are ignored
+    bool forceFast = false;     // -fast (or -fastgrid for grid points): every light uses its envelope
+};
+
+// Where and how a luxel or vertex receives light.
+struct SamplePoint {
+    Vec3 origin;
+    Vec3 normal;
+    int cluster = -1;        // -1 = unknown (no PVS culling)
+    bool twoSided = false;   // cull none surfaces are lit from both sides
+};
+
+// Read-only services shared by every sample; `scene` nullptr = no occlusion (-notrace),
+// `tree` nullptr = no PVS culling.
+struct LightingEnv {
+    const TraceScene* scene = nullptr;
+    const BspTree* tree = nullptr;
+    ContributionSettings settings;
+};
+
+// Fraction of the hemisphere above (point, normal) covered by the polygon, signed by facing
+// (q3map2 PointToPolygonFormFactor). 0 for degenerate polygons.
+float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding);
+
+// Controlled-model terms (specs/light-models.md).
+float controlledFalloff(const ControlledParams& p, float distance);
+float controlledCone(const ControlledParams& p, Vec3 spotAxis, Vec3 towardsLight);
+float controlledIncidence(const ControlledParams& p, float cosine);
+
+// Light reaching a luxel or vertex; nullopt when none does.
+std::optional<LightContribution> lightToSample(const Light& light, const SamplePoint& sample, const LightingEnv& env);
+// Light reaching a grid point (no surface, no angle term).
+std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
+                                                  const LightingEnv& env);
+
+// Every contribution of `lights` to a sample / grid point, in light order.
+void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,
+                       std::vector<LightContribution>& out);
+void gatherGridLight(std::span<const Light> lights, Vec3 origin, int cluster, const LightingEnv& env,
+                     std::vector<LightContribution>& out);
+
+}  // namespace q3::light

@@ -1,0 +1,324 @@
+// The lightmap phase: lay out every lightmapped surface, light its luxels (per light: sample,
+// adaptive sub-samples at light/shadow edges, per-light box filter), fill and average them, convert
+// to bytes and pack the pages into the BSP. Raw lightmaps are lit in parallel into their own slots.
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "light_context.h"
+#include "light_text.h"
+#include "lightmap_filter.h"
+#include "lightmap_layout.h"
+#include "lightmap_pack.h"
+#include "patch.h"
+
+namespace q3::light {
+namespace {
+
+constexpr float kLuxelEpsilon = 0.125f;  // LUXEL_EPSILON of q3map2's point-in-solid test
+
+struct RawResult {
+    bool ok = false;
+    LightmapBlock block;
+    RawLightmap layout;
+    BspLuxels luxels;
+    uint64_t luxelCount = 0;
+    uint64_t droppedStyled = 0;
+};
+
+// Patch mesh for the layout, with each point's position in control-point index space carried
+// through the tessellation in the texture-coordinate channel (Bezier blending of evenly spaced
+// indices is linear, so the result is the exact control-space coordinate).
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s) {
+    patch::ControlGrid grid;
+    grid.width = s.patchWidth;
+    grid.height = s.patchHeight;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        patch::PatchVertex pv;
+        pv.xyz = Vec3::fromArray(dv.xyz);
+        pv.normal = Vec3::fromArray(dv.normal);
+        pv.st[0] = static_cast<float>(v % std::max(1, s.patchWidth));
+        pv.st[1] = static_cast<float>(v / std::max(1, s.patchWidth));
+        grid.points.push_back(pv);
+    }
+    CurvedMesh mesh;
+    if (!patch::isValidGrid(grid)) return mesh;
+    patch::PatchMesh tess = patch::tessellateForLighting(grid);
+    mesh.width = tess.width;
+    mesh.height = tess.height;
+    for (const patch::PatchVertex& v : tess.verts) {
+        mesh.positions.push_back(v.xyz);
+        mesh.normals.push_back(v.normal);
+        mesh.controlU.push_back(v.st[0]);
+        mesh.controlV.push_back(v.st[1]);
+    }
+    return mesh;
+}
+
+struct LuxelSampler {
+    const LightContext& ctx;
+    const LightingEnv& env;
+    const RawLightmap& raw;
+    Vec3 offset;
+    bool twoSided;
+
+    std::optional<SamplePoint> samplePoint(Vec3 origin, Vec3 normal) const {
+        SamplePoint p{origin + offset, normal, -1, twoSided};
+        if (ctx.tree && !ctx.bsp.nodes.empty()) {
+            int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
+            if (cluster < 0) {
+                // q3map2 nudges a luxel in solid by half a luxel before giving up on it.
+                const float half = 0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample);
+                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(p.origin, half, half, kLuxelEpsilon);
+                if (!free) return std::nullopt;
+                p.origin = *free;
+                cluster = ctx.tree->clusterForPoint(p.origin);
+            }
+            p.cluster = cluster;
+        }
+        return p;
+    }
+
+    Vec3 lightAt(const Light& light, const SamplePoint& p, uint64_t& dropped) const {
+        std::optional<LightContribution> c = lightToSample(light, p, env);
+        if (!c) return {};
+        if (c->style != 0) {
+            ++dropped;
+            return {};
+        }
+        return c->color;
+    }
+
+    // Mean of four sub-samples around (fx, fy), recursing where they disagree.
+    Vec3 subsample(const Light& light, float fx, float fy, int level, int maxLevel, Vec3 centre,
+                   uint64_t& dropped) const {
+        const auto offsets = subsampleOffsets(level);
+        Vec3 values[4];
+        bool lit[4];
+        for (int k = 0; k < 4; ++k) {
+            const float sx = fx + offsets[static_cast<size_t>(k)][0];
+            const float sy = fy + offsets[static_cast<size_t>(k)][1];
+            values[k] = centre;
+            if (std::optional<Luxel> lx = sampleRawLightmap(raw, sx, sy))
+                if (std::optional<SamplePoint> p = samplePoint(lx->origin, lx->normal))
+                    values[k] = lightAt(light, *p, dropped);
+            lit[k] = maxComponent(values[k]) > 0;
+        }
+        const bool mixed = !(lit[0] == lit[1] && lit[1] == lit[2] && lit[2] == lit[3]);
+        Vec3 sum;
+        for (int k = 0; k < 4; ++k) {
+            if (mixed && level + 1 < maxLevel)
+                values[k] = subsample(light, fx + offsets[static_cast<size_t>(k)][0],
+                                      fy + offsets[static_cast<size_t>(k)][1], level + 1, maxLevel, values[k], dropped);
+            sum += values[k];
+        }
+        return sum * 0.25f;
+    }
+};
+
+bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
+    if (light.type == LightType::Sun) return true;
+    const float envelope = lightEnvelope(light, forceFast);
+    if (!std::isfinite(envelope)) return true;
+    const Vec3 nearest = vmin(vmax(light.origin, bounds.mins), bounds.maxs);
+    return distance(nearest, light.origin) < envelope;
+}
+
+RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& env, int surfaceNum,
+                          const LayoutOptions& layoutOptions) {
+    RawResult result;
+    const bsp::Surface& surface = ctx.bsp.surfaces[static_cast<size_t>(surfaceNum)];
+    const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(surface.shaderNum)];
+    const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);
+    const LightOptions& o = ctx.options;
+
+    SurfaceGeometry geometry = surfaceGeometry(ctx.bsp, surfaceNum);
+    if (surface.surfaceType == bsp::MST_PATCH) geometry.mesh = curvedMesh(ctx.bsp, surface);
+    SurfaceLightmapParams params;
+    params.sampleSize =
+        resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize, o.sampleSize, o.sampleScale);
+    params.axis = extra.lightmapAxis;
+    if (shader.lightmapAxis >= 0 && shader.lightmapAxis < 3) {
+        params.axis = Vec3{};
+        params.axis[shader.lightmapAxis] = 1;
+    }
+    params.sampleOffset = shader.lightmapSampleOffset;
+    Log quiet(false);
+    std::optional<RawLightmap> layout = layoutSurfaceLightmap(geometry, params, layoutOptions, &quiet);
+    if (!layout) return result;
+    RawLightmap& raw = *layout;
+
+    const int w = raw.superWidth(), h = raw.superHeight();
+    const Vec3 offset = ctx.surfaceOffsets[static_cast<size_t>(surfaceNum)];
+    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided};
+
+    // Sample points of every super luxel.
+    LuxelImage total(w, h);
+    std::vector<std::optional<SamplePoint>> points(static_cast<size_t>(w) * static_cast<size_t>(h));
+    Bounds bounds;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const Luxel& lx = raw.luxel(x, y);
+            const size_t i = total.index(x, y);
+            if (!lx.mapped) continue;
+            points[i] = sampler.samplePoint(lx.origin, lx.normal);
+            if (points[i]) {
+                total.state[i] = LuxelState::Mapped;
+                total.color[i] = ctx.world.ambient;
+                bounds.add(points[i]->origin);
+                ++result.luxelCount;
+            } else {
+                total.state[i] = LuxelState::Occluded;
+            }
+        }
+
+    const int maxLevel = std::max(0, o.lightSamples - 1);
+    LuxelImage single(w, h);
+    single.state = total.state;
+    for (const Light& light : ctx.lights) {
+        if (bounds.empty() || !lightReachesBounds(light, bounds, env.settings.forceFast)) continue;
+        bool any = false;
+        for (size_t i = 0; i < points.size(); ++i) {
+            single.color[i] = Vec3{};
+            if (!points[i]) continue;
+            if (o.cheap && total.color[i].x >= 255 && total.color[i].y >= 255 && total.color[i].z >= 255) continue;
+            single.color[i] = sampler.lightAt(light, *points[i], result.droppedStyled);
+            any = any || !(single.color[i] == Vec3{});
+        }
+        if (!any && maxLevel == 0) continue;
+        if (maxLevel > 0) {
+            // Adaptive sub-sampling where this light's lit/unlit state changes between neighbours.
+            std::vector<Vec3> refined = single.color;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const size_t i = total.index(x, y);
+                    if (!points[i]) continue;
+                    const bool lit = maxComponent(single.color[i]) > 0;
+                    bool edge = false;
+                    for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                        const int nx = x + dx, ny = y + dy;
+                        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                        const size_t j = total.index(nx, ny);
+                        if (points[j] && (maxComponent(single.color[j]) > 0) != lit) edge = true;
+                    }
+                    if (edge)
+                        refined[i] = sampler.subsample(light, x + 0.5f, y + 0.5f, 0, maxLevel, single.color[i],
+                                                       result.droppedStyled);
+                }
+            single.color = std::move(refined);
+        }
+        const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, light.filterRadius), raw.sampleSize,
+                                             raw.superSample, o.filter);
+        const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius) : single;
+        for (size_t i = 0; i < points.size(); ++i)
+            if (points[i]) total.color[i] += add.color[i];
+    }
+
+    fillFromNeighbours(total, ctx.world.ambient, false, false);
+    BspLuxels luxels = downsampleSuperLuxels(total, raw.superSample);
+
+    LightmapBlock block;
+    block.width = luxels.width;
+    block.height = luxels.height;
+    block.texels.resize(luxels.color.size());
+    for (size_t i = 0; i < luxels.color.size(); ++i) {
+        const Vec3 c = vmax(luxels.color[i], ctx.world.minLight);
+        block.texels[i] = colorToBytes(c, shader.lightmapBrightness, ctx.color);
+    }
+    block.used = luxels.used;
+    block.sortKey = shader.name;
+    block.surfaces = {surfaceNum};
+    block.vertexCoords = {raw.vertexCoords};
+
+    result.ok = true;
+    result.block = std::move(block);
+    result.luxels = std::move(luxels);
+    result.layout = std::move(raw);
+    return result;
+}
+
+}  // namespace
+
+void lightLightmaps(LightContext& ctx, Log& log) {
+    const LightOptions& o = ctx.options;
+    std::vector<int> surfaces;
+    for (size_t i = 0; i < ctx.bsp.surfaces.size(); ++i) {
+        const bsp::Surface& s = ctx.bsp.surfaces[i];
+        if (s.shaderNum < 0 || static_cast<size_t>(s.shaderNum) >= ctx.shaders.shaders.size()) continue;
+        if (isLightmappedSurface(s, ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)].vertexLit))
+            surfaces.push_back(static_cast<int>(i));
+    }
+    LayoutOptions layoutOptions;
+    layoutOptions.superSample = std::clamp(o.superSample, 1, kMaxSuperSample);
+    if (layoutOptions.superSample != o.superSample)
+        log.warning(strCat("-super ", o.superSample, " clamped to ", layoutOptions.superSample));
+    layoutOptions.sampleScale = o.sampleScale;
+    layoutOptions.pageSize = o.lightmapWidth;
+    layoutOptions.rawSizeLimit = o.rawLightmapSizeLimit;
+
+    const LightingEnv env = surfaceLightingEnv(ctx);
+    std::vector<RawResult> results(surfaces.size());
+    std::atomic<size_t> done{0};
+    const size_t step = std::max<size_t>(1, surfaces.size() / 10);
+    log.raw("lighting lightmaps: ");
+    auto body = [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t k = range.begin(); k != range.end(); ++k) {
+            results[k] = lightOneSurface(ctx, env, surfaces[k], layoutOptions);
+            const size_t n = done.fetch_add(1) + 1;
+            if (n % step == 0) log.raw(strCat(n / step - 1, "..."));
+        }
+    };
+    tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 1), body); });
+    log.raw("\n");
+
+    // Blocks in surface order; vertex light of lightmapped surfaces from their own luxels.
+    std::vector<LightmapBlock> blocks;
+    ctx.vertexLight.assign(ctx.bsp.drawVerts.size(), Vec3{});
+    ctx.vertexFromLightmap.assign(ctx.bsp.drawVerts.size(), 0);
+    for (size_t k = 0; k < results.size(); ++k) {
+        RawResult& r = results[k];
+        if (!r.ok) continue;
+        ctx.stats.luxels += r.luxelCount;
+        ctx.stats.droppedStyledLight += r.droppedStyled;
+        ++ctx.stats.lightmaps;
+        const bsp::Surface& s = ctx.bsp.surfaces[static_cast<size_t>(surfaces[k])];
+        for (int v = 0; v < s.numVerts && static_cast<size_t>(v) < r.layout.vertexCoords.size(); ++v) {
+            const auto& st = r.layout.vertexCoords[static_cast<size_t>(v)];
+            const int x = std::clamp(static_cast<int>(st[0]), 0, r.luxels.width - 1);
+            const int y = std::clamp(static_cast<int>(st[1]), 0, r.luxels.height - 1);
+            const size_t vi = static_cast<size_t>(s.firstVert + v);
+            ctx.vertexLight[vi] = r.luxels.color[static_cast<size_t>(y) * static_cast<size_t>(r.luxels.width) +
+                                                 static_cast<size_t>(x)];
+            ctx.vertexFromLightmap[vi] = 1;
+        }
+        applyLightmapOrigin(ctx.bsp.surfaces[static_cast<size_t>(surfaces[k])], r.layout);
+        blocks.push_back(std::move(r.block));
+    }
+
+    PackOptions pack;
+    pack.pageSize = o.lightmapWidth;
+    pack.gamePageSize = 128;
+    pack.external = o.externalLightmaps;
+    pack.collapse = !o.noCollapse;
+    PackedLightmaps packed = packLightmaps(blocks, pack);
+    applyPackedLightmaps(ctx.bsp, blocks, packed);
+    if (packed.external) {
+        std::filesystem::path dir = o.lightmapDir.empty()
+                                        ? ctx.bspPath.parent_path() / ctx.bspPath.stem()
+                                        : std::filesystem::path(o.lightmapDir);
+        auto written = writeExternalLightmaps(packed, dir);
+        log.info(strCat(written.size(), " external lightmaps written to ", dir.string()));
+    }
+    log.info(strCat(blocks.size(), " lightmaps on ", packed.pages.size(), " pages, ", ctx.stats.luxels, " luxels"));
+    if (ctx.stats.droppedStyledLight > 0)
+        log.warning(strCat("light styles other than 0 are not stored in lightmaps; ", ctx.stats.droppedStyledLight,
+                           " styled luxel contributions dropped"));
+}
+
+}  // namespace q3::light

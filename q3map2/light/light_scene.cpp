@@ -1,0 +1,225 @@
+// Pipeline steps that prepare lighting: option conversions, world-space surface geometry, the
+// shadow scene and BSP tree, and the light list.
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+#include "entity_keys.h"
+#include "light_context.h"
+#include "light_text.h"
+#include "patch.h"
+
+namespace q3::light {
+namespace {
+
+// Origin of every BSP model from the entity that owns it ("model" "*N" with an "origin").
+std::vector<Vec3> modelOrigins(const LightContext& ctx) {
+    std::vector<Vec3> origins(ctx.bsp.models.size());
+    for (const bsp::Entity& e : ctx.entities) {
+        const std::string* model = e.find("model");
+        if (!model || model->size() < 2 || (*model)[0] != '*') continue;
+        const int index = std::atoi(model->c_str() + 1);
+        if (index <= 0 || static_cast<size_t>(index) >= origins.size()) continue;
+        origins[static_cast<size_t>(index)] = vecKey(e, {"origin"}).value_or(Vec3{});
+    }
+    return origins;
+}
+
+SceneSurface planarGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {
+    SceneSurface out;
+    out.xyz.reserve(static_cast<size_t>(s.numVerts));
+    out.st.reserve(static_cast<size_t>(s.numVerts) * 2);
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        out.xyz.push_back(Vec3::fromArray(dv.xyz) + offset);
+        out.st.push_back(dv.st[0]);
+        out.st.push_back(dv.st[1]);
+    }
+    for (int i = 0; i + 2 < s.numIndexes; i += 3)
+        for (int k = 0; k < 3; ++k) {
+            const int32_t idx = bsp.drawIndexes[static_cast<size_t>(s.firstIndex + i + k)];
+            out.triangles.push_back(idx >= 0 && idx < s.numVerts ? static_cast<uint32_t>(idx) : 0u);
+        }
+    return out;
+}
+
+patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {
+    patch::ControlGrid grid;
+    grid.width = s.patchWidth;
+    grid.height = s.patchHeight;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        patch::PatchVertex pv;
+        pv.xyz = Vec3::fromArray(dv.xyz) + offset;
+        pv.normal = Vec3::fromArray(dv.normal);
+        pv.st[0] = dv.st[0];
+        pv.st[1] = dv.st[1];
+        grid.points.push_back(pv);
+    }
+    return grid;
+}
+
+SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {
+    SceneSurface out;
+    out.isPatch = true;
+    patch::ControlGrid grid = patchControlGrid(bsp, s, offset);
+    if (!patch::isValidGrid(grid)) return out;
+    patch::PatchMesh mesh = patch::tessellateForLighting(grid);
+    for (const patch::PatchVertex& v : mesh.verts) {
+        out.xyz.push_back(v.xyz);
+        out.st.push_back(v.st[0]);
+        out.st.push_back(v.st[1]);
+    }
+    out.triangles = mesh.indices;
+    return out;
+}
+
+}  // namespace
+
+LightScales lightScalesFromOptions(const LightOptions& o) {
+    LightScales s;
+    s.pointScale = o.pointScale;
+    s.spotScale = o.spotScale;
+    s.areaScale = o.areaScale;
+    s.skyScale = o.skyScale;
+    s.extraDist = o.extraDist;
+    s.backsplashFractionScale = o.backsplashFractionScale;
+    s.backsplashDistance = o.backsplashDistance;
+    s.fast = o.fast || o.faster;
+    s.fastPoint = o.fastPoint;
+    s.wolfLight = o.wolfLight;
+    s.noStyles = o.noStyles;
+    s.oneSky = o.oneSky;
+    return s;
+}
+
+ColorOptions colorOptionsFromOptions(const LightOptions& o, float maxLight) {
+    ColorOptions c;
+    c.brightness = o.brightness;
+    c.contrast = o.contrast;
+    c.gamma = o.gamma;
+    c.exposure = o.exposure;
+    c.saturation = o.saturation;
+    c.compensate = o.compensate;
+    c.maxLight = maxLight;
+    c.sRGB = o.lightmapsRGB;
+    return c;
+}
+
+void buildSurfaceGeometry(LightContext& ctx) {
+    const bsp::Bsp& bsp = ctx.bsp;
+    const std::vector<Vec3> origins = modelOrigins(ctx);
+    std::vector<Vec3> surfaceOffset(bsp.surfaces.size());
+    for (size_t m = 0; m < bsp.models.size(); ++m) {
+        const bsp::Model& model = bsp.models[m];
+        for (int i = 0; i < model.numSurfaces; ++i) {
+            const size_t s = static_cast<size_t>(model.firstSurface + i);
+            if (s < surfaceOffset.size()) surfaceOffset[s] = origins[m];
+        }
+    }
+    ctx.surfaceOffsets = surfaceOffset;
+    ctx.surfaces.clear();
+    ctx.surfaces.resize(bsp.surfaces.size());
+    for (size_t i = 0; i < bsp.surfaces.size(); ++i) {
+        const bsp::Surface& s = bsp.surfaces[i];
+        SceneSurface geometry;
+        if (s.surfaceType == bsp::MST_PLANAR || s.surfaceType == bsp::MST_TRIANGLE_SOUP)
+            geometry = planarGeometry(bsp, s, surfaceOffset[i]);
+        else if (s.surfaceType == bsp::MST_PATCH)
+            geometry = patchGeometry(bsp, s, surfaceOffset[i]);
+        geometry.surfaceNum = static_cast<int>(i);
+        if (s.shaderNum >= 0 && static_cast<size_t>(s.shaderNum) < ctx.shaders.shaders.size())
+            geometry.shader = &ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)];
+        ctx.surfaces[i] = std::move(geometry);
+    }
+}
+
+void buildScene(LightContext& ctx) {
+    Log quiet(false);
+    ctx.skyIndices = assignSkyIndices(ctx.bsp, ctx.shaders.shaders, ctx.world.noShaderSun, ctx.options.oneSky, quiet);
+    for (SceneSurface& s : ctx.surfaces) {
+        const int shaderNum = ctx.bsp.surfaces[static_cast<size_t>(s.surfaceNum)].shaderNum;
+        s.skyIndex = shaderNum >= 0 && static_cast<size_t>(shaderNum) < ctx.skyIndices.size()
+                         ? ctx.skyIndices[static_cast<size_t>(shaderNum)]
+                         : -1;
+    }
+    std::vector<uint8_t> translucent;
+    translucent.reserve(ctx.shaders.shaders.size());
+    for (const LightingShader& s : ctx.shaders.shaders)
+        translucent.push_back(s.translucent || s.alphaShadow || s.lightFilter || s.fog ? 1 : 0);
+    ctx.tree = std::make_unique<BspTree>(ctx.bsp, translucent);
+    TraceSceneOptions options;
+    options.patchShadows = ctx.options.patchShadows;
+    ctx.scene = std::make_unique<TraceScene>(ctx.surfaces, options);
+}
+
+void createLights(LightContext& ctx, Log& log) {
+    const std::string name = ctx.bspPath.string();
+    std::vector<bsp::Entity> all = ctx.entities;
+    all.insert(all.end(), ctx.mapLights.begin(), ctx.mapLights.end());
+    std::vector<bsp::Entity> targets = all;
+    targets.insert(targets.end(), ctx.mapTargets.begin(), ctx.mapTargets.end());
+    ctx.lights = createEntityLights(all, targets, ctx.scales, log, name);
+
+    const bool noShaderSun = ctx.world.noShaderSun;
+    std::vector<Light> shaderLights = createShaderLights(
+        ctx.bsp, ctx.shaders.shaders, ctx.skyIndices, noShaderSun, ctx.scales, [&ctx](int surfaceNum) {
+            const SceneSurface& s = ctx.surfaces[static_cast<size_t>(surfaceNum)];
+            EmitterGeometry g;
+            g.xyz = s.xyz;
+            g.triangles = s.triangles;
+            return g;
+        });
+    ctx.lights.insert(ctx.lights.end(), shaderLights.begin(), shaderLights.end());
+
+    // Clusters for PVS culling. Lights inside solid are removed, as q3map2 does, after trying
+    // small fixed nudges.
+    std::vector<Light> kept;
+    kept.reserve(ctx.lights.size());
+    int inSolid = 0;
+    for (Light& light : ctx.lights) {
+        if (light.type == LightType::Sun || !ctx.tree || ctx.bsp.nodes.empty()) {
+            kept.push_back(std::move(light));
+            continue;
+        }
+        int cluster = ctx.tree->clusterForPointExt(light.origin, 0);
+        if (cluster < 0) {
+            if (std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(light.origin, 2.0f, 2.0f))
+                cluster = ctx.tree->clusterForPoint(*free);
+        }
+        if (cluster < 0) {
+            ++inSolid;
+            continue;
+        }
+        light.cluster = cluster;
+        kept.push_back(std::move(light));
+    }
+    ctx.lights = std::move(kept);
+    if (inSolid > 0) log.info(strCat(inSolid, " lights in solid removed"));
+
+    size_t counts[4] = {0, 0, 0, 0};
+    for (const Light& l : ctx.lights) ++counts[static_cast<int>(l.type)];
+    log.info(strCat(counts[0], " point lights, ", counts[1], " spotlights, ", counts[2], " suns, ", counts[3],
+                    " area lights"));
+}
+
+LightingEnv surfaceLightingEnv(const LightContext& ctx) {
+    LightingEnv env;
+    env.scene = ctx.options.noTrace ? nullptr : ctx.scene.get();
+    env.tree = ctx.tree.get();
+    env.settings.faster = ctx.options.faster;
+    env.settings.lightAngleHL = ctx.options.lightAngleHL;
+    env.settings.sunOnly = ctx.options.sunOnly;
+    env.settings.forceFast = ctx.options.fast || ctx.options.faster;
+    env.settings.ignoreNear = 1.5f;  // DEFAULT_INHIBIT_RADIUS around luxels and vertices
+    return env;
+}
+
+LightingEnv gridLightingEnv(const LightContext& ctx) {
+    LightingEnv env = surfaceLightingEnv(ctx);
+    env.settings.ignoreNear = 0;  // every occluder counts for grid points
+    env.settings.forceFast = env.settings.forceFast || ctx.options.fastGrid;
+    return env;
+}
+
+}  // namespace q3::light

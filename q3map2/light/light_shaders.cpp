@@ -1,0 +1,142 @@
+// ShaderInfo -> LightingShader, with light images loaded once per name (see light_shaders.h).
+#include "light_shaders.h"
+
+#include <cstring>
+
+#include "image.h"
+#include "light_text.h"
+#include "log.h"
+#include "shader_info.h"
+#include "vfs.h"
+#include "vfs_image.h"
+
+namespace q3::light {
+namespace {
+
+LightImage toLightImage(const Image& image) {
+    LightImage out;
+    out.width = image.width;
+    out.height = image.height;
+    out.rgba = image.rgba;
+    return out;
+}
+
+bool needsImage(const LightingShader& s) {
+    return (s.surfaceLight > 0 && !s.hasLightRGB) || s.alphaShadow || s.lightFilter;
+}
+
+// For shaders without a script, the BSP's own flags say what the compiler saw.
+void applyBspFlags(LightingShader& s, const bsp::Shader& record) {
+    const uint32_t surf = static_cast<uint32_t>(record.surfaceFlags);
+    const uint32_t cont = static_cast<uint32_t>(record.contentFlags);
+    s.sky = s.sky || (surf & q3::surfaceflags::Sky);
+    s.nodraw = s.nodraw || (surf & q3::surfaceflags::NoDraw);
+    s.alphaShadow = s.alphaShadow || (surf & q3::surfaceflags::AlphaShadow);
+    s.lightFilter = s.lightFilter || (surf & q3::surfaceflags::LightFilter);
+    s.vertexLit = s.vertexLit || (surf & q3::surfaceflags::VertexLit);
+    s.translucent = s.translucent || (cont & q3::contents::Translucent);
+    s.fog = s.fog || (cont & q3::contents::Fog);
+}
+
+}  // namespace
+
+LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image) {
+    LightingShader s;
+    s.name = info.name;
+    s.sky = info.isSky();
+    s.translucent = info.isTranslucent();
+    s.nodraw = info.isNoDraw();
+    s.alphaShadow = info.isAlphaShadow();
+    s.lightFilter = info.isLightFilter();
+    s.twoSided = info.twoSided;
+    s.fog = info.isFog();
+    s.vertexLit = info.isVertexLit();
+    s.autosprite = info.autosprite;
+    for (const ShaderSun& sun : info.suns) {
+        SunDirective d;
+        d.color = sun.color;
+        d.intensity = sun.intensity;
+        d.direction = sun.direction;
+        d.devianceDeg = sun.devianceDegrees;
+        d.samples = sun.samples;
+        d.style = sun.style;
+        d.filterRadius = sun.filterRadius;
+        s.suns.push_back(d);
+    }
+    for (const ShaderSkyLight& sky : info.skyLights) {
+        SkyLightDirective d;
+        d.value = sky.value;
+        d.iterations = sky.iterations;
+        d.horizonMin = static_cast<float>(sky.horizonMin);
+        d.horizonMax = static_cast<float>(sky.horizonMax);
+        s.skyLights.push_back(d);
+    }
+    s.surfaceLight = info.surfaceLight;
+    s.hasLightRGB = info.lightRGB.has_value();
+    if (info.lightRGB) {
+        s.color = *info.lightRGB;
+    } else if (image && image->width > 0) {
+        Vec3 avg = image->averageColor();
+        float m = maxComponent(avg);
+        s.color = m > 0 ? avg / m : Vec3{1, 1, 1};
+    }
+    s.lightSubdivide = static_cast<float>(info.lightSubdivide);
+    s.lightStyle = info.lightStyle;
+    s.backsplashFraction = info.backsplashFraction;
+    s.backsplashDistance = info.backsplashDistance;
+    s.backsplashSet = info.backsplashSet;
+    s.lightFilterRadius = info.lightFilterRadius;
+    s.lightImage = image;
+    s.lightmapSampleSize = info.lightmapSampleSize;
+    s.lightmapAxis = info.lightmapAxis;
+    s.lightmapSampleOffset = info.lightmapSampleOffset;
+    s.lightmapFilterRadius = info.lightmapFilterRadius;
+    s.lightmapBrightness = info.lightmapBrightness;
+    s.vertexScale = info.vertexScale;
+    s.noVertexLight = info.noVertexLight;
+    s.forceSunlight = info.forceSunlight;
+    return s;
+}
+
+LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log) {
+    LightingShaderSet set;
+    set.shaders.reserve(bsp.shaders.size());
+    for (const bsp::Shader& record : bsp.shaders) {
+        const std::string name(record.name, strnlen(record.name, sizeof(record.name)));
+        const ShaderInfo& info = table.find(name);
+        LightingShader probe = toLightingShader(info, nullptr);
+        if (!info.explicitScript) applyBspFlags(probe, record);
+
+        const LightImage* image = nullptr;
+        if (vfs && needsImage(probe)) {
+            for (const std::string& candidate : info.lightImageCandidates()) {
+                auto it = set.images.find(candidate);
+                if (it != set.images.end()) {
+                    image = it->second.get();
+                    if (image) break;
+                    continue;
+                }
+                std::unique_ptr<LightImage> loaded;
+                try {
+                    if (std::optional<LoadedImage> li = loadImage(*vfs, candidate))
+                        loaded = std::make_unique<LightImage>(toLightImage(li->image));
+                } catch (const std::exception& e) {
+                    log.warning(e.what());
+                }
+                image = loaded.get();
+                set.images.emplace(candidate, std::move(loaded));
+                if (image) break;
+            }
+            if (!image) {
+                ++set.missingImages;
+                log.debug(strCat("shader ", name, ": no light image found"));
+            }
+        }
+        LightingShader resolved = toLightingShader(info, image);
+        if (!info.explicitScript) applyBspFlags(resolved, record);
+        set.shaders.push_back(std::move(resolved));
+    }
+    return set;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,36 @@
+// From the shader scripts to what the light stage needs per BSP shader: LightingShader records
+// with their light images loaded once through the VFS.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bspfile.h"
+#include "lights.h"
+
+namespace q3 {
+class Log;
+class Vfs;
+class ShaderTable;
+struct ShaderInfo;
+}  // namespace q3
+
+namespace q3::light {
+
+struct LightingShaderSet {
+    std::vector<LightingShader> shaders;  // indexed like bsp.shaders
+    std::map<std::string, std::unique_ptr<LightImage>> images;  // by VFS image name; owns the images
+    int missingImages = 0;
+};
+
+// The lighting view of one script shader. `image` may be null (no light image found).
+LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image);
+
+// One LightingShader per BSP shader. Images are loaded (each once) only for shaders that need them:
+// surface lights without q3map_lightRGB, alpha shadows and light filters. `vfs` may be null (no
+// images). Names come from the BSP shader lump.
+LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log);
+
+}  // namespace q3::light

@@ -1,0 +1,134 @@
+#include "lightmap_filter.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace q3::light {
+
+int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool filterOption) {
+    const float radius = std::max(0.0f, worldRadius);
+    int luxels = sampleSize != 0 ? int(float(superSample) * radius / float(sampleSize)) : 0;
+    if (luxels == 0 && (radius > 0.0f || filterOption)) luxels = 1;
+    return luxels;
+}
+
+LuxelImage boxFilterLuxels(const LuxelImage& light, int radius) {
+    if (radius <= 0) return light;
+    LuxelImage out = light;
+    for (int y = 0; y < light.height; ++y) {
+        for (int x = 0; x < light.width; ++x) {
+            if (light.state[light.index(x, y)] != LuxelState::Mapped) continue;
+            Vec3 sum;
+            float weightSum = 0.0f;
+            for (int sy = std::max(0, y - radius); sy <= std::min(light.height - 1, y + radius); ++sy) {
+                for (int sx = std::max(0, x - radius); sx <= std::min(light.width - 1, x + radius); ++sx) {
+                    const size_t i = light.index(sx, sy);
+                    if (light.state[i] != LuxelState::Mapped) continue;
+                    // The border of the square counts half per axis (a quarter in the corners).
+                    const float weight = (std::abs(sx - x) == radius ? 0.5f : 1.0f) * (std::abs(sy - y) == radius ? 0.5f : 1.0f);
+                    sum += light.color[i] * weight;
+                    weightSum += weight;
+                }
+            }
+            if (weightSum > 0.0f) out.color[light.index(x, y)] = sum / weightSum;
+        }
+    }
+    return out;
+}
+
+void fillFromNeighbours(LuxelImage& image, Vec3 ambient, bool dark, bool splotchFix) {
+    // Reads only the luxels as they were before this pass, so the result does not depend on the
+    // visiting order.
+    const LuxelImage before = image;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const size_t i = image.index(x, y);
+            const LuxelState state = before.state[i];
+            const Vec3 c = before.color[i];
+            const bool needsFill = state == LuxelState::Unmapped || state == LuxelState::Occluded ||
+                                   (splotchFix && (c.x <= ambient.x || c.y <= ambient.y || c.z <= ambient.z));
+            if (!needsFill) continue;
+            Vec3 sum;
+            float samples = 0.0f;
+            for (int sy = std::max(0, y - 1); sy <= std::min(image.height - 1, y + 1); ++sy) {
+                for (int sx = std::max(0, x - 1); sx <= std::min(image.width - 1, x + 1); ++sx) {
+                    if (sx == x && sy == y) continue;
+                    const size_t j = before.index(sx, sy);
+                    if (before.state[j] != LuxelState::Mapped) continue;
+                    if (splotchFix && before.color[j] == ambient) continue;
+                    sum += before.color[j];
+                    samples += 1.0f;
+                }
+            }
+            if (samples <= 0.0f) continue;
+            if (dark) {
+                sum += ambient * 2.0f;
+                samples += 2.0f;
+            }
+            image.color[i] = sum / samples;
+            if (state != LuxelState::Mapped) image.state[i] = LuxelState::Flooded;
+        }
+    }
+}
+
+BspLuxels downsampleSuperLuxels(const LuxelImage& super, int superSample) {
+    const int ss = std::max(1, superSample);
+    BspLuxels out;
+    out.width = super.width / ss;
+    out.height = super.height / ss;
+    out.color.assign(size_t(out.width) * out.height, Vec3{});
+    out.used.assign(size_t(out.width) * out.height, 0);
+
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            Vec3 lit, occluded;
+            int litCount = 0, occludedCount = 0;
+            for (int ly = 0; ly < ss; ++ly) {
+                for (int lx = 0; lx < ss; ++lx) {
+                    const size_t i = super.index(x * ss + lx, y * ss + ly);
+                    switch (super.state[i]) {
+                        case LuxelState::Mapped:
+                        case LuxelState::Flooded: lit += super.color[i]; ++litCount; break;
+                        case LuxelState::Occluded: occluded += super.color[i]; ++occludedCount; break;
+                        case LuxelState::Unmapped: break;
+                    }
+                }
+            }
+            const size_t o = size_t(y) * out.width + x;
+            // Occluded samples only count when nothing better exists.
+            if (litCount > 0) {
+                out.color[o] = lit / float(litCount);
+                out.used[o] = 1;
+            } else if (occludedCount > 0) {
+                out.color[o] = occluded / float(occludedCount);
+                out.used[o] = 1;
+            }
+        }
+    }
+    // Luxels nothing reached borrow from their used 3x3 neighbours (original values only).
+    const std::vector<uint8_t> usedBefore = out.used;
+    const std::vector<Vec3> colorBefore = out.color;
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            const size_t o = size_t(y) * out.width + x;
+            if (usedBefore[o]) continue;
+            Vec3 sum;
+            int count = 0;
+            for (int sy = std::max(0, y - 1); sy <= std::min(out.height - 1, y + 1); ++sy)
+                for (int sx = std::max(0, x - 1); sx <= std::min(out.width - 1, x + 1); ++sx) {
+                    const size_t j = size_t(sy) * out.width + sx;
+                    if (j == o || !usedBefore[j]) continue;
+                    sum += colorBefore[j];
+                    ++count;
+                }
+            if (count > 0) {
+                out.color[o] = sum / float(count);
+                out.used[o] = 1;
+            }
+        }
+    }
+    for (Vec3& c : out.color) c = vmax(c, Vec3{});
+    return out;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,531 @@
+#include "lightmap_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace q3::light {
+
+int resolveSampleSize(bool srfLoaded, int srfSampleSize, int shaderSampleSize, int defaultSampleSize, int sampleScale) {
+    int size = srfLoaded ? srfSampleSize : (shaderSampleSize > 0 ? shaderSampleSize : defaultSampleSize);
+    if (size <= 0) size = defaultSampleSize > 0 ? defaultSampleSize : kDefaultSampleSize;
+    if (sampleScale > 0) size *= sampleScale;
+    return std::max(1, size);
+}
+
+bool isLightmappedSurface(const bsp::Surface& surface, bool shaderVertexLit) {
+    const bool lightmappableType = surface.surfaceType == bsp::MST_PLANAR || surface.surfaceType == bsp::MST_PATCH ||
+                                   surface.surfaceType == bsp::MST_TRIANGLE_SOUP;
+    return lightmappableType && surface.lightmapNum != bsp::kLightmapByVertex && !shaderVertexLit;
+}
+
+SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex) {
+    SurfaceGeometry g;
+    const bsp::Surface& s = bsp.surfaces.at(size_t(surfaceIndex));
+    g.surfaceIndex = surfaceIndex;
+    g.surfaceType = s.surfaceType;
+    g.positions.reserve(size_t(std::max(0, s.numVerts)));
+    for (int i = 0; i < s.numVerts; ++i) {
+        const bsp::DrawVert& v = bsp.drawVerts.at(size_t(s.firstVert) + i);
+        g.positions.push_back(Vec3::fromArray(v.xyz));
+        g.normals.push_back(Vec3::fromArray(v.normal));
+    }
+    for (int i = 0; i + 2 < s.numIndexes; i += 3)
+        for (int k = 0; k < 3; ++k) {
+            const int32_t index = bsp.drawIndexes.at(size_t(s.firstIndex) + i + k);
+            g.triangles.push_back(index >= 0 && index < s.numVerts ? uint32_t(index) : 0u);
+        }
+    g.planeNormal = Vec3::fromArray(s.lightmapVecs[2]);
+    g.patchWidth = s.patchWidth;
+    g.patchHeight = s.patchHeight;
+    return g;
+}
+
+std::array<std::array<float, 2>, 4> subsampleOffsets(int level) {
+    const float b = 0.25f / float(1 << std::clamp(level, 0, 20));
+    return {{{-b, -b}, {b, -b}, {-b, b}, {b, b}}};
+}
+
+void applyLightmapOrigin(bsp::Surface& surface, const RawLightmap& lightmap) {
+    if (lightmap.axisNum < 0) return;  // curved patches keep what -bsp wrote
+    lightmap.origin.toArray(surface.lightmapOrigin);
+}
+
+namespace {
+
+using St = std::array<float, 2>;
+constexpr int kMaxGrownSampleSize = 1 << 20;  // beyond the world size: give up growing
+
+struct Nearest {
+    float distance = 1e30f;
+    int triangle = -1;
+    std::array<float, 3> bary{};
+};
+
+// Barycentric coordinates of p in triangle (a, b, c); false for a degenerate triangle.
+bool barycentric(const St& p, const St& a, const St& b, const St& c, std::array<float, 3>& out) {
+    const float d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    if (std::fabs(d) < 1e-12f) return false;
+    const float u = ((b[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (b[1] - p[1])) / d;
+    const float v = ((c[0] - p[0]) * (a[1] - p[1]) - (a[0] - p[0]) * (c[1] - p[1])) / d;
+    out = {u, v, 1.0f - u - v};
+    return true;
+}
+
+// Nearest point of a triangle to p in lightmap space, as barycentric coordinates, and its distance.
+bool nearestOnTriangle(const St& p, const LightmapTriangle& t, std::array<float, 3>& bary, float& dist) {
+    if (!barycentric(p, t.st[0], t.st[1], t.st[2], bary)) return false;
+    if (bary[0] >= 0.0f && bary[1] >= 0.0f && bary[2] >= 0.0f) {
+        dist = 0.0f;
+        return true;
+    }
+    dist = 1e30f;
+    for (int e = 0; e < 3; ++e) {
+        const St& a = t.st[e];
+        const St& b = t.st[(e + 1) % 3];
+        const float dx = b[0] - a[0], dy = b[1] - a[1];
+        const float len2 = dx * dx + dy * dy;
+        float f = len2 > 0.0f ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2 : 0.0f;
+        f = std::clamp(f, 0.0f, 1.0f);
+        const float qx = a[0] + f * dx - p[0], qy = a[1] + f * dy - p[1];
+        const float d = std::sqrt(qx * qx + qy * qy);
+        if (d < dist) {
+            dist = d;
+            bary = {0.0f, 0.0f, 0.0f};
+            bary[e] = 1.0f - f;
+            bary[(e + 1) % 3] = f;
+        }
+    }
+    return true;
+}
+
+// Separating-axis test of the luxel square [x, x+1) x [y, y+1) against a triangle, with the square
+// shrunk by a hair so that touching at an edge does not count.
+bool squareOverlapsTriangle(int x, int y, const LightmapTriangle& t) {
+    constexpr float kShrink = 1e-3f;
+    const float minX = float(x) + kShrink, maxX = float(x + 1) - kShrink;
+    const float minY = float(y) + kShrink, maxY = float(y + 1) - kShrink;
+    float tMinX = 1e30f, tMaxX = -1e30f, tMinY = 1e30f, tMaxY = -1e30f;
+    for (const St& p : t.st) {
+        tMinX = std::min(tMinX, p[0]);
+        tMaxX = std::max(tMaxX, p[0]);
+        tMinY = std::min(tMinY, p[1]);
+        tMaxY = std::max(tMaxY, p[1]);
+    }
+    if (tMaxX < minX || tMinX > maxX || tMaxY < minY || tMinY > maxY) return false;
+    const St corners[4] = {{minX, minY}, {maxX, minY}, {minX, maxY}, {maxX, maxY}};
+    for (int e = 0; e < 3; ++e) {
+        const St& a = t.st[e];
+        const St& b = t.st[(e + 1) % 3];
+        const St& c = t.st[(e + 2) % 3];
+        const float nx = -(b[1] - a[1]), ny = b[0] - a[0];
+        const float side = nx * (c[0] - a[0]) + ny * (c[1] - a[1]);
+        if (side == 0.0f) return false;  // degenerate
+        bool allOutside = true;
+        for (const St& q : corners) {
+            const float s = nx * (q[0] - a[0]) + ny * (q[1] - a[1]);
+            if ((side > 0.0f && s >= 0.0f) || (side < 0.0f && s <= 0.0f)) {
+                allOutside = false;
+                break;
+            }
+        }
+        if (allOutside) return false;
+    }
+    return true;
+}
+
+// Triangle index cells cover super luxels -1..width and -1..height.
+int cellOf(const RawLightmap& lm, float x, float y) {
+    const int cw = lm.superWidth() + 2, ch = lm.superHeight() + 2;
+    const int cx = int(std::floor(x)) + 1, cy = int(std::floor(y)) + 1;
+    if (cx < 0 || cy < 0 || cx >= cw || cy >= ch) return -1;
+    return cy * cw + cx;
+}
+
+void indexTriangles(RawLightmap& lm) {
+    const int cw = lm.superWidth() + 2, ch = lm.superHeight() + 2;
+    std::vector<std::vector<uint32_t>> cells(size_t(cw) * ch);
+    for (size_t i = 0; i < lm.triangles.size(); ++i) {
+        float minX = 1e30f, maxX = -1e30f, minY = 1e30f, maxY = -1e30f;
+        for (const St& p : lm.triangles[i].st) {
+            minX = std::min(minX, p[0]);
+            maxX = std::max(maxX, p[0]);
+            minY = std::min(minY, p[1]);
+            maxY = std::max(maxY, p[1]);
+        }
+        // Every point within one luxel of the triangle falls in these cells.
+        const int x0 = std::max(0, int(std::floor(minX - 1.0f)) + 1), x1 = std::min(cw - 1, int(std::floor(maxX + 1.0f)) + 1);
+        const int y0 = std::max(0, int(std::floor(minY - 1.0f)) + 1), y1 = std::min(ch - 1, int(std::floor(maxY + 1.0f)) + 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) cells[size_t(y) * cw + x].push_back(uint32_t(i));
+    }
+    lm.cellFirst.assign(cells.size() + 1, 0);
+    lm.cellTriangles.clear();
+    for (size_t c = 0; c < cells.size(); ++c) {
+        lm.cellFirst[c] = uint32_t(lm.cellTriangles.size());
+        lm.cellTriangles.insert(lm.cellTriangles.end(), cells[c].begin(), cells[c].end());
+    }
+    lm.cellFirst[cells.size()] = uint32_t(lm.cellTriangles.size());
+}
+
+Nearest nearestTriangle(const RawLightmap& lm, const St& p, float maxDistance) {
+    Nearest best;
+    const int cell = cellOf(lm, p[0], p[1]);
+    if (cell < 0 || size_t(cell) + 1 >= lm.cellFirst.size()) return best;
+    // Lowest triangle index wins ties, whatever the cell order.
+    for (uint32_t k = lm.cellFirst[size_t(cell)]; k < lm.cellFirst[size_t(cell) + 1]; ++k) {
+        const uint32_t i = lm.cellTriangles[k];
+        std::array<float, 3> bary;
+        float dist;
+        if (!nearestOnTriangle(p, lm.triangles[i], bary, dist)) continue;
+        if (dist <= maxDistance && (dist < best.distance || (dist == best.distance && int(i) < best.triangle)))
+            best = {dist, int(i), bary};
+    }
+    return best;
+}
+
+// Surface point and normal at super-luxel coordinates p, given the nearest triangle.
+Luxel luxelAt(const RawLightmap& lm, const St& p, const Nearest& n) {
+    const LightmapTriangle& t = lm.triangles[size_t(n.triangle)];
+    Vec3 normal = normalize(t.normal[0] * n.bary[0] + t.normal[1] * n.bary[1] + t.normal[2] * n.bary[2]);
+    Vec3 origin;
+    if (lm.planar) {
+        // Exactly on the plane, also for luxels hanging over the surface edge.
+        const float s = p[0] / float(lm.superSample) - 0.5f, tt = p[1] / float(lm.superSample) - 0.5f;
+        origin = lm.origin + lm.vecs[0] * s + lm.vecs[1] * tt;
+        if (dot(normal, normal) == 0.0f) normal = lm.planeNormal;
+    } else {
+        origin = t.position[0] * n.bary[0] + t.position[1] * n.bary[1] + t.position[2] * n.bary[2];
+    }
+    if (dot(normal, normal) == 0.0f) normal = normalize(cross(t.position[2] - t.position[0], t.position[1] - t.position[0]));
+    return {origin + normal * lm.sampleOffset, normal, true};
+}
+
+void mapLuxels(RawLightmap& lm) {
+    indexTriangles(lm);
+    const int sw = lm.superWidth(), sh = lm.superHeight();
+    lm.luxels.assign(size_t(sw) * sh, Luxel{});
+    // Per luxel, the nearest of the triangles its square overlaps (centre inside: distance 0).
+    std::vector<Nearest> best(size_t(sw) * sh);
+    for (size_t ti = 0; ti < lm.triangles.size(); ++ti) {
+        const LightmapTriangle& t = lm.triangles[ti];
+        float minX = 1e30f, maxX = -1e30f, minY = 1e30f, maxY = -1e30f;
+        for (const St& p : t.st) {
+            minX = std::min(minX, p[0]);
+            maxX = std::max(maxX, p[0]);
+            minY = std::min(minY, p[1]);
+            maxY = std::max(maxY, p[1]);
+        }
+        const int x0 = std::max(0, int(std::floor(minX))), x1 = std::min(sw - 1, int(std::floor(maxX)));
+        const int y0 = std::max(0, int(std::floor(minY))), y1 = std::min(sh - 1, int(std::floor(maxY)));
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                if (!squareOverlapsTriangle(x, y, t)) continue;
+                std::array<float, 3> bary;
+                float dist;
+                const St centre{float(x) + 0.5f, float(y) + 0.5f};
+                if (!nearestOnTriangle(centre, t, bary, dist)) continue;
+                Nearest& b = best[size_t(y) * sw + x];
+                if (dist < b.distance) b = {dist, int(ti), bary};
+            }
+    }
+    for (int y = 0; y < sh; ++y)
+        for (int x = 0; x < sw; ++x) {
+            const Nearest& n = best[size_t(y) * sw + x];
+            if (n.triangle >= 0) lm.luxels[size_t(y) * sw + x] = luxelAt(lm, {float(x) + 0.5f, float(y) + 0.5f}, n);
+        }
+}
+
+Vec3 vertexNormal(const SurfaceGeometry& g, size_t i) {
+    return i < g.normals.size() ? g.normals[i] : Vec3{};
+}
+
+// q3map2 AddSurfaceToRawLightmap for surfaces projected along an axis.
+// Triangles of one surface projected into the lightmap by `project`.
+template <typename Project>
+void addSurfaceTriangles(RawLightmap& lm, const SurfaceGeometry& g, const Project& project) {
+    if (g.surfaceType == bsp::MST_PATCH && g.mesh.width >= 2 && g.mesh.height >= 2 &&
+        g.mesh.positions.size() == size_t(g.mesh.width) * g.mesh.height) {
+        // A flat patch: its tessellation gives the exact outline (curved edges, degenerate rows).
+        const CurvedMesh& m = g.mesh;
+        auto corner = [&](int x, int y, LightmapTriangle& t, int k) {
+            const size_t i = size_t(y) * m.width + x;
+            t.st[size_t(k)] = project(m.positions[i]);
+            t.position[size_t(k)] = m.positions[i];
+            t.normal[size_t(k)] = i < m.normals.size() ? m.normals[i] : g.planeNormal;
+        };
+        for (int y = 0; y + 1 < m.height; ++y)
+            for (int x = 0; x + 1 < m.width; ++x) {
+                LightmapTriangle a, b;
+                corner(x, y, a, 0), corner(x, y + 1, a, 1), corner(x + 1, y + 1, a, 2);
+                corner(x, y, b, 0), corner(x + 1, y + 1, b, 1), corner(x + 1, y, b, 2);
+                lm.triangles.push_back(a);
+                lm.triangles.push_back(b);
+            }
+        return;
+    }
+    for (size_t i = 0; i + 2 < g.triangles.size(); i += 3) {
+        LightmapTriangle t;
+        bool valid = true;
+        for (int k = 0; k < 3 && valid; ++k) {
+            const uint32_t v = g.triangles[i + size_t(k)];
+            valid = v < g.positions.size();
+            if (!valid) break;
+            t.st[size_t(k)] = project(g.positions[v]);
+            t.position[size_t(k)] = g.positions[v];
+            t.normal[size_t(k)] = vertexNormal(g, v);
+        }
+        if (valid) lm.triangles.push_back(t);
+    }
+}
+
+// q3map2 AddSurfaceToRawLightmap for surfaces projected along an axis. The first surface of the
+// group defines the plane; all share the bounds, size and projection.
+std::optional<RawLightmap> layoutProjected(std::span<const SurfaceGeometry> group, Vec3 axis,
+                                           const SurfaceLightmapParams& params, const LayoutOptions& options,
+                                           int pageW, int pageH, Log* log) {
+    const SurfaceGeometry& g = group[0];
+    RawLightmap lm;
+    lm.surfaceIndex = g.surfaceIndex;
+    lm.superSample = std::clamp(options.superSample, 1, kMaxSuperSample);
+    lm.requestedSampleSize = std::max(1, params.sampleSize);
+    lm.sampleOffset = params.sampleOffset;
+    lm.planar = dot(g.planeNormal, g.planeNormal) > 0.0f;
+    lm.planeNormal = g.planeNormal;
+
+    Bounds bounds;
+    for (const SurfaceGeometry& member : group)
+        for (const Vec3& p : member.positions) bounds.add(p);
+    if (bounds.empty() || g.positions.empty()) return std::nullopt;
+
+    // Snap to the luxel grid; grow the sample size while any side would exceed the page.
+    int sampleSize = lm.requestedSampleSize;
+    Vec3 mins, maxs;
+    std::array<int, 3> size{};
+    for (;;) {
+        bool fits = true;
+        const float ss = float(sampleSize);
+        for (int i = 0; i < 3; ++i) {
+            mins[i] = ss * std::floor(bounds.mins[i] / ss);
+            maxs[i] = ss * std::ceil(bounds.maxs[i] / ss);
+            size[i] = int((maxs[i] - mins[i]) / ss + 1.0f);
+            if (size[i] > pageW || size[i] > pageH || (options.rawSizeLimit > 0 && size[i] > options.rawSizeLimit))
+                fits = false;
+        }
+        if (fits) break;
+        if (++sampleSize > kMaxGrownSampleSize) {
+            // Tiny pages (a surface straddling a grid line never fits one luxel) would loop forever.
+            if (log) log->warning("surface " + std::to_string(g.surfaceIndex) + " cannot fit a " + std::to_string(pageW) +
+                                  "x" + std::to_string(pageH) + " lightmap at any sample size");
+            return std::nullopt;
+        }
+    }
+    lm.sampleSize = sampleSize;
+    if (sampleSize != lm.requestedSampleSize && options.rawSizeLimit == 0 && log) {
+        char text[320];
+        std::snprintf(text, sizeof(text),
+                      "surface %d at (%6.0f %6.0f %6.0f) (%6.0f %6.0f %6.0f) too large for desired "
+                      "samplesize/lightmapsize/lightmapscale combination, increased samplesize from %d to %d",
+                      g.surfaceIndex, bounds.mins.x, bounds.mins.y, bounds.mins.z, bounds.maxs.x, bounds.maxs.y,
+                      bounds.maxs.z, lm.requestedSampleSize, sampleSize);
+        log->warning(text);
+    }
+
+    // Planar surfaces start at their real minimum; others at the snapped one (as q3map2).
+    const Vec3 start = lm.planar ? bounds.mins : mins;
+    const Vec3 fa{std::fabs(axis.x), std::fabs(axis.y), std::fabs(axis.z)};
+    int sAxis, tAxis;
+    if (fa.z >= fa.x && fa.z >= fa.y) {  // z wins ties: floors and ceilings keep x/y mapping
+        lm.axisNum = 2, sAxis = 0, tAxis = 1;
+    } else if (fa.x >= fa.y && fa.x >= fa.z) {
+        lm.axisNum = 0, sAxis = 1, tAxis = 2;
+    } else {
+        lm.axisNum = 1, sAxis = 0, tAxis = 2;
+    }
+    if (fa[lm.axisNum] == 0.0f) {
+        if (log) log->warning("surface " + std::to_string(g.surfaceIndex) + ": lightmap projection chose a zero axis");
+        return std::nullopt;
+    }
+    lm.width = size[size_t(sAxis)];
+    lm.height = size[size_t(tAxis)];
+
+    const float inv = 1.0f / float(sampleSize);
+    for (const SurfaceGeometry& member : group) {
+        lm.surfaces.push_back(member.surfaceIndex);
+        auto& coords = lm.surfaceCoords.emplace_back();
+        coords.reserve(member.positions.size());
+        for (const Vec3& p : member.positions) {
+            const Vec3 d = p - start;
+            coords.push_back({d[sAxis] * inv + 0.5f, d[tAxis] * inv + 0.5f});
+        }
+    }
+    lm.vertexCoords = lm.surfaceCoords[0];
+
+    // Origin and per-luxel steps projected along the axis onto the surface plane. A forced axis
+    // lying in the plane cannot project onto it: luxels then come from the triangles.
+    Vec3 planeN = lm.planar ? g.planeNormal : axis;
+    if (std::fabs(planeN[lm.axisNum]) < 1e-6f) {
+        lm.planar = false;
+        planeN = {};
+        planeN[lm.axisNum] = 1.0f;
+    }
+    const float planeD = dot(g.positions[0], planeN);
+    lm.planeDist = lm.planar ? planeD : 0.0f;
+    lm.origin = start;
+    lm.origin[lm.axisNum] -= (dot(lm.origin, planeN) - planeD) / planeN[lm.axisNum];
+    for (int i = 0; i < 2; ++i) {
+        Vec3 v;
+        v[i == 0 ? sAxis : tAxis] = float(sampleSize);
+        v[lm.axisNum] -= dot(v, planeN) / planeN[lm.axisNum];
+        lm.vecs[size_t(i)] = v;
+    }
+    lm.vecs[2] = g.planeNormal;
+
+    const float S = float(lm.superSample);
+    auto project = [&](Vec3 p) -> St {
+        const Vec3 d = p - start;
+        return {(d[sAxis] * inv + 0.5f) * S, (d[tAxis] * inv + 0.5f) * S};
+    };
+    for (const SurfaceGeometry& member : group) addSurfaceTriangles(lm, member, project);
+    mapLuxels(lm);
+    return lm;
+}
+
+// The control grid itself as a mesh, for patches given without a tessellation.
+CurvedMesh controlGridMesh(const SurfaceGeometry& g) {
+    CurvedMesh m;
+    m.width = g.patchWidth;
+    m.height = g.patchHeight;
+    m.positions = g.positions;
+    m.normals = g.normals;
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            m.controlU.push_back(float(x));
+            m.controlV.push_back(float(y));
+        }
+    return m;
+}
+
+// q3map2 AddPatchToRawLightmap: a curved patch gets a lightmap sized from the longest row/column
+// lengths of its mesh, with coordinates linear in the control-point indices.
+std::optional<RawLightmap> layoutCurvedPatch(const SurfaceGeometry& g, const SurfaceLightmapParams& params,
+                                             const LayoutOptions& options, int pageW, int pageH, Log* log) {
+    if (g.patchWidth < 2 || g.patchHeight < 2 || size_t(g.patchWidth) * g.patchHeight != g.positions.size()) {
+        if (log) log->warning("surface " + std::to_string(g.surfaceIndex) + ": patch control grid does not match its vertices");
+        return std::nullopt;
+    }
+    const CurvedMesh mesh = g.mesh.width >= 2 && g.mesh.height >= 2 ? g.mesh : controlGridMesh(g);
+    const size_t count = size_t(mesh.width) * mesh.height;
+    if (mesh.positions.size() != count || mesh.controlU.size() != count || mesh.controlV.size() != count) {
+        if (log) log->warning("surface " + std::to_string(g.surfaceIndex) + ": patch mesh is inconsistent");
+        return std::nullopt;
+    }
+
+    RawLightmap lm;
+    lm.surfaceIndex = g.surfaceIndex;
+    lm.superSample = std::clamp(options.superSample, 1, kMaxSuperSample);
+    lm.requestedSampleSize = lm.sampleSize = std::max(1, params.sampleSize);
+    lm.sampleOffset = params.sampleOffset;
+    lm.axisNum = -1;
+
+    std::vector<float> widthTable(size_t(mesh.width), 0.0f), heightTable(size_t(mesh.height), 0.0f);
+    auto at = [&](int x, int y) { return mesh.positions[size_t(y) * mesh.width + x]; };
+    for (int y = 0; y < mesh.height; ++y)
+        for (int x = 0; x < mesh.width; ++x) {
+            if (x + 1 < mesh.width) widthTable[size_t(x)] = std::max(widthTable[size_t(x)], distance(at(x, y), at(x + 1, y)));
+            if (y + 1 < mesh.height) heightTable[size_t(y)] = std::max(heightTable[size_t(y)], distance(at(x, y), at(x, y + 1)));
+        }
+    float lengthS = 0, lengthT = 0;
+    for (int x = 0; x + 1 < mesh.width; ++x) lengthS += widthTable[size_t(x)];
+    for (int y = 0; y + 1 < mesh.height; ++y) lengthT += heightTable[size_t(y)];
+    const float ss = float(lm.sampleSize);
+    lm.width = std::min(std::max(int(std::ceil(lengthS / ss)) + 1, g.patchWidth), pageW);
+    lm.height = std::min(std::max(int(std::ceil(lengthT / ss)) + 1, g.patchHeight), pageH);
+    const float sBasis = float(lm.width - 1) / float(g.patchWidth - 1);
+    const float tBasis = float(lm.height - 1) / float(g.patchHeight - 1);
+
+    for (int y = 0; y < g.patchHeight; ++y)
+        for (int x = 0; x < g.patchWidth; ++x) lm.vertexCoords.push_back({sBasis * float(x) + 0.5f, tBasis * float(y) + 0.5f});
+    lm.surfaces = {g.surfaceIndex};
+    lm.surfaceCoords = {lm.vertexCoords};
+
+    const float S = float(lm.superSample);
+    auto corner = [&](int x, int y, LightmapTriangle& t, int k) {
+        const size_t i = size_t(y) * mesh.width + x;
+        t.st[size_t(k)] = {(sBasis * mesh.controlU[i] + 0.5f) * S, (tBasis * mesh.controlV[i] + 0.5f) * S};
+        t.position[size_t(k)] = mesh.positions[i];
+        t.normal[size_t(k)] = i < mesh.normals.size() ? mesh.normals[i] : Vec3{};
+    };
+    for (int y = 0; y + 1 < mesh.height; ++y)
+        for (int x = 0; x + 1 < mesh.width; ++x) {
+            // Alternate the quad diagonal as q3map2 does ((x + y) & 1).
+            const int quad[5][2] = {{x, y}, {x, y + 1}, {x + 1, y + 1}, {x + 1, y}, {x, y}};
+            const int r = (x + y) & 1;
+            LightmapTriangle a, b;
+            corner(quad[r][0], quad[r][1], a, 0);
+            corner(quad[r + 1][0], quad[r + 1][1], a, 1);
+            corner(quad[r + 2][0], quad[r + 2][1], a, 2);
+            corner(quad[r][0], quad[r][1], b, 0);
+            corner(quad[r + 2][0], quad[r + 2][1], b, 1);
+            corner(quad[r + 3][0], quad[r + 3][1], b, 2);
+            lm.triangles.push_back(a);
+            lm.triangles.push_back(b);
+        }
+    mapLuxels(lm);
+    return lm;
+}
+
+}  // namespace
+
+Vec3 lightmapProjectionAxis(const SurfaceGeometry& g, const SurfaceLightmapParams& params) {
+    Vec3 axis = params.axis;
+    if (dot(axis, axis) == 0.0f) axis = g.planeNormal;
+    if (dot(axis, axis) == 0.0f) {
+        if (g.surfaceType == bsp::MST_PATCH) return {};  // curved: mapped by its control grid
+        // Non-planar soups project along their average normal.
+        for (const Vec3& n : g.normals) axis += n;
+        if (dot(axis, axis) == 0.0f) axis = {0, 0, 1};
+    }
+    return axis;
+}
+
+std::optional<RawLightmap> layoutSurfaceLightmap(const SurfaceGeometry& g, const SurfaceLightmapParams& params,
+                                                 const LayoutOptions& options, Log* log) {
+    return layoutSurfaceGroup(std::span(&g, 1), params, options, log);
+}
+
+std::optional<RawLightmap> layoutSurfaceGroup(std::span<const SurfaceGeometry> group, const SurfaceLightmapParams& params,
+                                              const LayoutOptions& options, Log* log) {
+    if (group.empty() || group[0].positions.empty()) return std::nullopt;
+    const int pageW = params.pageWidth > 0 ? params.pageWidth : options.pageSize;
+    const int pageH = params.pageHeight > 0 ? params.pageHeight : options.pageSize;
+
+    const Vec3 axis = lightmapProjectionAxis(group[0], params);
+    if (dot(axis, axis) == 0.0f) {
+        if (group.size() > 1) {
+            if (log) log->warning("surface " + std::to_string(group[0].surfaceIndex) + ": a curved patch cannot share a lightmap");
+            return std::nullopt;
+        }
+        return layoutCurvedPatch(group[0], params, options, pageW, pageH, log);
+    }
+    std::vector<SurfaceGeometry> prepared(group.begin(), group.end());
+    for (SurfaceGeometry& g : prepared) {
+        if (g.surfaceType != bsp::MST_PATCH || !g.triangles.empty() || g.mesh.width >= 2) continue;
+        // A flat patch without a tessellation: triangulate its control grid.
+        for (int y = 0; y + 1 < g.patchHeight; ++y)
+            for (int x = 0; x + 1 < g.patchWidth; ++x) {
+                const uint32_t i = uint32_t(y * g.patchWidth + x), w = uint32_t(g.patchWidth);
+                g.triangles.insert(g.triangles.end(), {i, i + w, i + w + 1, i, i + w + 1, i + 1});
+            }
+    }
+    return layoutProjected(prepared, axis, params, options, pageW, pageH, log);
+}
+
+std::optional<Luxel> sampleRawLightmap(const RawLightmap& lm, float x, float y) {
+    const St p{x, y};
+    const Nearest n = nearestTriangle(lm, p, 1.0f);
+    if (n.triangle < 0) return std::nullopt;
+    return luxelAt(lm, p, n);
+}
+
+}  // namespace q3::light

@@ -1,0 +1,307 @@
+#include "lightmap_pack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numeric>
+#include <system_error>
+#include <tuple>
+
+#include "file_io.h"
+#include "image.h"
+#include "log.h"
+
+namespace q3::light {
+
+namespace {
+
+bool texelUsed(const LightmapBlock& b, size_t i) { return b.used.empty() || b.used[i] != 0; }
+
+// q3map2 stores a solid lightmap with the minimum of its colour range.
+Rgb8 solidColor(const LightmapBlock& b) {
+    Rgb8 low{255, 255, 255};
+    bool any = false;
+    for (size_t i = 0; i < b.texels.size(); ++i) {
+        if (!texelUsed(b, i)) continue;
+        any = true;
+        for (int c = 0; c < 3; ++c) low[c] = std::min(low[c], b.texels[i][c]);
+    }
+    return any ? low : Rgb8{0, 0, 0};
+}
+
+int usedTexels(const LightmapBlock& b, bool solid) {
+    if (solid) return 1;
+    int n = 0;
+    for (size_t i = 0; i < b.texels.size(); ++i) n += texelUsed(b, i);
+    return n;
+}
+
+struct Page {
+    std::vector<uint8_t> rgb;
+    std::vector<uint8_t> used;
+    int freeTexels = 0;
+};
+
+// q3map2 TestOutLightmapStamp: the block must lie inside the page (its full size, even when solid)
+// and its used texels (one texel when solid) must all be free.
+bool stampFits(const Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, int y) {
+    if (x < 0 || y < 0 || x + b.width > pageSize || y + b.height > pageSize) return false;
+    if (solid) return !page.used[size_t(y) * pageSize + x];
+    for (int sy = 0; sy < b.height; ++sy)
+        for (int sx = 0; sx < b.width; ++sx) {
+            if (!texelUsed(b, size_t(sy) * b.width + sx)) continue;
+            if (page.used[size_t(y + sy) * pageSize + (x + sx)]) return false;
+        }
+    return true;
+}
+
+void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, int y) {
+    auto put = [&](int px, int py, const Rgb8& c) {
+        const size_t o = size_t(py) * pageSize + px;
+        if (!page.used[o]) --page.freeTexels;
+        page.used[o] = 1;
+        for (int k = 0; k < 3; ++k) page.rgb[o * 3 + size_t(k)] = c[k];
+    };
+    if (solid) {
+        put(x, y, solidColor(b));
+        return;
+    }
+    for (int sy = 0; sy < b.height; ++sy)
+        for (int sx = 0; sx < b.width; ++sx) {
+            const size_t i = size_t(sy) * b.width + sx;
+            if (texelUsed(b, i)) put(x + sx, y + sy, b.texels[i]);
+        }
+}
+
+}  // namespace
+
+bool blockIsSolid(const LightmapBlock& b) {
+    if (b.width <= 2 && b.height <= 2) return true;  // small lightmaps are forced solid
+    bool first = true;
+    Rgb8 reference{};
+    for (size_t i = 0; i < b.texels.size(); ++i) {
+        if (!texelUsed(b, i)) continue;
+        if (first) {
+            reference = b.texels[i];
+            first = false;
+        } else if (b.texels[i] != reference) {
+            return false;  // q3map2's tolerance (0.0625) is below one byte step
+        }
+    }
+    return true;
+}
+
+namespace {
+
+// q3map2 CompareBSPLuxels with the solid state of both blocks already known.
+bool blocksMatchKnown(const LightmapBlock& a, bool solidA, const Rgb8& colorA, const LightmapBlock& b, bool solidB,
+                      const Rgb8& colorB) {
+    if (solidA != solidB) return false;
+    if (solidA) return colorA == colorB;
+    if (a.width != b.width || a.height != b.height) return false;
+    constexpr double kLuxelTolerance = 0.0025;
+    constexpr double kColorFraction = 1.0 / 768.0;  // 1 / 3 / 256
+    double delta = 0.0, total = 0.0;
+    for (size_t i = 0; i < a.texels.size(); ++i) {
+        total += 1.0;
+        if (!texelUsed(a, i) || !texelUsed(b, i)) continue;
+        int sum = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = std::abs(int(a.texels[i][c]) - int(b.texels[i][c]));
+            if (d > 3) return false;
+            sum += d;
+        }
+        delta += sum * kColorFraction;
+        // Checked as it accumulates, as q3map2 does.
+        if (delta / total > kLuxelTolerance) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b) {
+    return blocksMatchKnown(a, blockIsSolid(a), solidColor(a), b, blockIsSolid(b), solidColor(b));
+}
+
+int PackedLightmaps::lightmapNumForPage(int page) const {
+    if (page < 0) return bsp::kLightmapByVertex;
+    return customSize ? bsp::kLightmapByVertex : page;
+}
+
+std::vector<uint8_t> PackedLightmaps::lump14() const {
+    std::vector<uint8_t> out;
+    if (external || customSize) return out;
+    for (const auto& page : pages) out.insert(out.end(), page.begin(), page.end());
+    return out;
+}
+
+PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackOptions& options) {
+    const int pageSize = options.pageSize;
+    if (pageSize < 2 || (pageSize & (pageSize - 1)) != 0)
+        throw CompileError("lightmap page size " + std::to_string(pageSize) + " is not a power of two >= 2");
+    PackedLightmaps packed;
+    packed.pageSize = pageSize;
+    packed.external = options.external;
+    packed.customSize = !options.external && pageSize != options.gamePageSize;
+    packed.placements.assign(blocks.size(), BlockPlacement{});
+
+    std::vector<uint8_t> solid(blocks.size(), 0);
+    std::vector<Rgb8> colors(blocks.size());
+    for (size_t i = 0; i < blocks.size(); ++i) {
+        const LightmapBlock& b = blocks[i];
+        if (b.width <= 0 || b.height <= 0 || b.texels.size() != size_t(b.width) * b.height ||
+            (!b.used.empty() && b.used.size() != b.texels.size()))
+            throw CompileError("lightmap block " + std::to_string(i) + " has inconsistent texel data");
+        if (b.width > pageSize || b.height > pageSize)
+            throw CompileError("lightmap block " + std::to_string(i) + " (" + std::to_string(b.width) + "x" +
+                               std::to_string(b.height) + ") does not fit a " + std::to_string(pageSize) + " page");
+        // -nocollapse also keeps small and uniform lightmaps at full size.
+        solid[i] = options.collapse && blockIsSolid(b);
+        colors[i] = solidColor(b);
+    }
+
+    // Identical lightmaps share the texels of the first one.
+    std::vector<int> twin(blocks.size(), -1);
+    if (options.collapse) {
+        for (size_t i = 0; i < blocks.size(); ++i) {
+            if (twin[i] >= 0) continue;
+            for (size_t j = i + 1; j < blocks.size(); ++j)
+                if (twin[j] < 0 && blocksMatchKnown(blocks[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
+                    twin[j] = int(i);
+        }
+    }
+
+    std::vector<size_t> order;
+    for (size_t i = 0; i < blocks.size(); ++i)
+        if (twin[i] < 0) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        const long areaA = long(blocks[a].width) * blocks[a].height, areaB = long(blocks[b].width) * blocks[b].height;
+        return std::tie(blocks[a].sortKey, areaB, a) < std::tie(blocks[b].sortKey, areaA, b);
+    });
+
+    std::vector<Page> pages;
+    const int pageTexels = pageSize * pageSize;
+    for (size_t index : order) {
+        const LightmapBlock& b = blocks[index];
+        const bool isSolid = solid[index] != 0;
+        const int needed = usedTexels(b, isSolid);
+        int pageIndex = -1, px = 0, py = 0;
+        for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
+            const Page& page = pages[p];
+            if (page.freeTexels < needed) continue;
+            // Fast allocation skips pages more than 90% full and steps through positions.
+            if (options.fastAllocate && page.freeTexels < pageTexels / 10) continue;
+            const int xMax = isSolid ? pageSize : pageSize - b.width + 1;
+            const int yMax = isSolid ? pageSize : pageSize - b.height + 1;
+            const int xStep = options.fastAllocate ? std::max(1, b.width / 15) : 1;
+            const int yStep = options.fastAllocate ? std::max(1, b.height / 15) : 1;
+            for (int y = 0; y < yMax && pageIndex < 0; y += yStep)
+                for (int x = 0; x < xMax; x += xStep)
+                    if (stampFits(page, pageSize, b, isSolid, x, y)) {
+                        pageIndex = int(p), px = x, py = y;
+                        break;
+                    }
+        }
+        if (pageIndex < 0) {
+            Page fresh;
+            fresh.rgb.assign(size_t(pageTexels) * 3, 0);
+            fresh.used.assign(size_t(pageTexels), 0);
+            fresh.freeTexels = pageTexels;
+            pages.push_back(std::move(fresh));
+            pageIndex = int(pages.size()) - 1;
+            px = py = 0;
+        }
+        stamp(pages[size_t(pageIndex)], pageSize, b, isSolid, px, py);
+        packed.placements[index] = {pageIndex, px, py, isSolid ? 1 : b.width, isSolid ? 1 : b.height, isSolid, -1};
+    }
+    for (size_t i = 0; i < blocks.size(); ++i) {
+        if (twin[i] < 0) continue;
+        packed.placements[i] = packed.placements[size_t(twin[i])];
+        packed.placements[i].twinOf = twin[i];
+    }
+    for (Page& page : pages) {
+        packed.pages.push_back(std::move(page.rgb));
+        packed.pageUsed.push_back(std::move(page.used));
+    }
+    return packed;
+}
+
+void applyPackedLightmaps(bsp::Bsp& bsp, std::span<const LightmapBlock> blocks, const PackedLightmaps& packed) {
+    if (packed.placements.size() != blocks.size())
+        throw CompileError("lightmap packing does not match its " + std::to_string(blocks.size()) + " blocks");
+    const float inv = 1.0f / float(packed.pageSize);
+    for (size_t i = 0; i < blocks.size(); ++i) {
+        const LightmapBlock& b = blocks[i];
+        const BlockPlacement& p = packed.placements[i];
+        if (b.vertexCoords.size() != b.surfaces.size())
+            throw CompileError("lightmap block " + std::to_string(i) + " lacks vertex coordinates for its surfaces");
+        for (size_t k = 0; k < b.surfaces.size(); ++k) {
+            const int s = b.surfaces[k];
+            if (s < 0 || s >= int(bsp.surfaces.size()))
+                throw CompileError("lightmap block " + std::to_string(i) + " names surface " + std::to_string(s) +
+                                   " which does not exist");
+            bsp::Surface& surface = bsp.surfaces[size_t(s)];
+            const auto& coords = b.vertexCoords[k];
+            if (int(coords.size()) != surface.numVerts)
+                throw CompileError("surface " + std::to_string(s) + " has " + std::to_string(surface.numVerts) +
+                                   " vertices but " + std::to_string(coords.size()) + " lightmap coordinates");
+            surface.lightmapNum = packed.lightmapNumForPage(p.page);
+            surface.lightmapX = p.x;
+            surface.lightmapY = p.y;
+            surface.lightmapWidth = p.width;
+            surface.lightmapHeight = p.height;
+            for (int v = 0; v < surface.numVerts; ++v) {
+                bsp::DrawVert& dv = bsp.drawVerts.at(size_t(surface.firstVert) + size_t(v));
+                if (p.solid) {
+                    dv.lightmap[0] = (float(p.x) + 0.5f) * inv;
+                    dv.lightmap[1] = (float(p.y) + 0.5f) * inv;
+                } else {
+                    dv.lightmap[0] = (float(p.x) + coords[size_t(v)][0]) * inv;
+                    dv.lightmap[1] = (float(p.y) + coords[size_t(v)][1]) * inv;
+                }
+            }
+        }
+    }
+    bsp.lightmaps = packed.lump14();
+}
+
+std::vector<uint8_t> encodeLightmapTga(std::span<const uint8_t> rgb, int width, int height) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgba.resize(size_t(width) * height * 4);
+    for (size_t i = 0; i < size_t(width) * height; ++i) {
+        for (int c = 0; c < 3; ++c) image.rgba[i * 4 + size_t(c)] = rgb[i * 3 + size_t(c)];
+        image.rgba[i * 4 + 3] = 255;
+    }
+    return encodeTga(image, false);
+}
+
+std::string externalLightmapName(int index) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "lm_%04d.tga", index);
+    return name;
+}
+
+std::vector<std::filesystem::path> writeExternalLightmaps(const PackedLightmaps& packed, const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw FileError(dir.string() + ": cannot create the lightmap folder: " + ec.message());
+    std::vector<std::filesystem::path> written;
+    for (size_t i = 0; i < packed.pages.size(); ++i) {
+        const auto path = dir / externalLightmapName(int(i));
+        writeFileAtomic(path, encodeLightmapTga(packed.pages[i], packed.pageSize, packed.pageSize));
+        written.push_back(path);
+    }
+    // Remove pages left by an earlier compile that produced more of them, as q3map2 does.
+    for (int i = int(packed.pages.size());; ++i) {
+        const auto stale = dir / externalLightmapName(i);
+        if (!std::filesystem::exists(stale, ec)) break;
+        std::filesystem::remove(stale, ec);
+    }
+    return written;
+}
+
+}  // namespace q3::light

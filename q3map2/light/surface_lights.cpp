@@ -1,0 +1,218 @@
+// Shader-driven lights: q3map_surfacelight surfaces chopped into area lights (with their
+// backsplash), autosprite point lights, and the suns and sky domes of sky shaders.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lights.h"
+
+namespace q3::light {
+namespace {
+
+constexpr float kFormFactorValueScale = 3;
+constexpr float kDefaultLightSubdivide = 999;
+constexpr float kClipEpsilon = 0.1f;
+
+using Winding = std::vector<Vec3>;
+
+// Splits `w` by the axial plane (axis, dist) into the part above and the part below.
+void clipAxial(const Winding& w, int axis, float dist, Winding& front, Winding& back) {
+    const size_t n = w.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3& a = w[i];
+        const Vec3& b = w[(i + 1) % n];
+        float da = a[axis] - dist;
+        float db = b[axis] - dist;
+        if (da >= -kClipEpsilon) front.push_back(a);
+        if (da <= kClipEpsilon) back.push_back(a);
+        bool crosses = (da > kClipEpsilon && db < -kClipEpsilon) || (da < -kClipEpsilon && db > kClipEpsilon);
+        if (crosses) {
+            Vec3 mid = lerp(a, b, da / (da - db));
+            mid[axis] = dist;
+            front.push_back(mid);
+            back.push_back(mid);
+        }
+    }
+}
+
+float windingArea(const Winding& w) {
+    float area = 0;
+    for (size_t i = 2; i < w.size(); ++i) area += 0.5f * length(cross(w[i - 1] - w[0], w[i] - w[0]));
+    return area;
+}
+
+Bounds windingBounds(const Winding& w) {
+    Bounds b;
+    for (const Vec3& p : w) b.add(p);
+    return b;
+}
+
+struct AreaLightContext {
+    const LightingShader& shader;
+    const LightScales& scales;
+    Vec3 normal;  // average vertex normal of the emitting triangle
+    float subdivide;
+    std::vector<Light>& out;
+};
+
+void emitAreaLight(const AreaLightContext& ctx, const Winding& w) {
+    const Bounds bounds = windingBounds(w);
+    for (int axis = 0; axis < 3; ++axis) {
+        if (bounds.maxs[axis] - bounds.mins[axis] > ctx.subdivide) {
+            const float dist = (bounds.maxs[axis] + bounds.mins[axis]) * 0.5f;
+            Winding front, back;
+            clipAxial(w, axis, dist, front, back);
+            if (front.size() >= 3) emitAreaLight(ctx, front);
+            if (back.size() >= 3) emitAreaLight(ctx, back);
+            return;
+        }
+    }
+    const float area = windingArea(w);
+    if (area < 1.0f || area > 20000000.0f) return;
+
+    const LightingShader& si = ctx.shader;
+    Light light;
+    light.type = LightType::Area;
+    light.winding = w;
+    light.falloffTolerance = ctx.scales.falloffTolerance;
+    light.fast = ctx.scales.fast;
+    light.photons = si.surfaceLight * area * ctx.scales.areaScale;
+    light.add = si.surfaceLight * kFormFactorValueScale * ctx.scales.areaScale;
+    light.color = si.color;
+    light.style = ctx.scales.noStyles ? 0 : si.lightStyle;
+    light.normal = ctx.normal;
+    light.origin = bounds.center() + ctx.normal;  // nudged off the plane
+    light.planeDist = dot(light.origin, light.normal);
+    light.twoSided = si.fog || si.twoSided;
+    light.filterRadius = si.lightFilterRadius;
+
+    constexpr float kDefaultBacksplashFraction = 0.05f;
+    const float fraction =
+        si.backsplashSet ? si.backsplashFraction : kDefaultBacksplashFraction * ctx.scales.backsplashFractionScale;
+    const float splashDistance = si.backsplashSet ? si.backsplashDistance : ctx.scales.backsplashDistance;
+    ctx.out.push_back(light);
+
+    if (fraction > 0 && !si.sky) {
+        // A dimmer copy facing back at the emitter, so that the wall around a light is lit.
+        Light splash = light;
+        splash.photons = light.photons * 7.0f * fraction;
+        splash.add = light.add * 7.0f * fraction;
+        splash.winding.assign(w.rbegin(), w.rend());
+        for (Vec3& p : splash.winding) p += ctx.normal * splashDistance;
+        splash.origin = light.origin + ctx.normal * splashDistance;
+        splash.normal = -ctx.normal;
+        splash.planeDist = dot(splash.origin, splash.normal);
+        splash.twoSided = false;
+        ctx.out.push_back(splash);
+    }
+}
+
+}  // namespace
+
+const uint8_t* LightImage::texel(float s, float t) const {
+    if (width <= 0 || height <= 0 || !std::isfinite(s) || !std::isfinite(t)) return nullptr;
+    // Nearest texel with q3map2's rounding (RadSampleImage): int(size * coord + 0.5), repeated.
+    auto wrap = [](float v, int size) {
+        long i = static_cast<long>(std::floor(static_cast<double>(v) * size + 0.5)) % size;
+        return static_cast<int>(i < 0 ? i + size : i);
+    };
+    const int x = wrap(s, width);
+    const int y = wrap(t, height);
+    return &rgba[(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4];
+}
+
+Vec3 LightImage::averageColor() const {
+    if (width <= 0 || height <= 0) return {1, 1, 1};
+    double sum[3] = {0, 0, 0};
+    const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
+    for (size_t i = 0; i < count; ++i)
+        for (int c = 0; c < 3; ++c) sum[c] += rgba[i * 4 + static_cast<size_t>(c)];
+    const double scale = 1.0 / (255.0 * static_cast<double>(count));
+    return {static_cast<float>(sum[0] * scale), static_cast<float>(sum[1] * scale), static_cast<float>(sum[2] * scale)};
+}
+
+void appendAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const LightingShader& shader,
+                      const LightScales& scales) {
+    if (shader.surfaceLight <= 0) return;
+    const float subdivide = shader.lightSubdivide > 0 ? shader.lightSubdivide : kDefaultLightSubdivide;
+    for (size_t i = 0; i + 2 < g.triangles.size(); i += 3) {
+        Winding w{g.xyz[g.triangles[i]], g.xyz[g.triangles[i + 1]], g.xyz[g.triangles[i + 2]]};
+        Vec3 normal;
+        if (g.normals.size() == g.xyz.size()) {
+            normal = g.normals[g.triangles[i]] + g.normals[g.triangles[i + 1]] + g.normals[g.triangles[i + 2]];
+        }
+        if (length(normal) <= 0) normal = cross(w[2] - w[0], w[1] - w[0]);  // Quake winding order
+        if (length(normal) <= 0) continue;
+        AreaLightContext ctx{shader, scales, normalize(normal), subdivide, out};
+        emitAreaLight(ctx, w);
+    }
+}
+
+std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<LightingShader>& shaders,
+                                      const std::vector<int>& skyIndices, bool noShaderSun,
+                                      const LightScales& scales,
+                                      const std::function<EmitterGeometry(int surfaceNum)>& geometryOf) {
+    std::vector<Light> out;
+    std::vector<bool> skyDone(shaders.size(), false);
+    for (size_t i = 0; i < bsp.surfaces.size(); ++i) {
+        const bsp::Surface& surface = bsp.surfaces[i];
+        if (surface.shaderNum < 0 || static_cast<size_t>(surface.shaderNum) >= shaders.size()) continue;
+        const size_t shaderNum = static_cast<size_t>(surface.shaderNum);
+        const LightingShader& si = shaders[shaderNum];
+
+        // Suns and sky domes are created once per shader, when its first surface is met.
+        if (!skyDone[shaderNum]) {
+            skyDone[shaderNum] = true;
+            const int skyIndex = shaderNum < skyIndices.size() ? skyIndices[shaderNum] : -1;
+            if (!noShaderSun)
+                for (size_t k = 0; k < si.suns.size(); ++k)
+                    appendSunLights(out, si.suns[k], skyIndex, scales,
+                                    static_cast<uint32_t>(shaderNum * 977u + k * 131u + 7u));
+            for (const SkyLightDirective& sky : si.skyLights)
+                appendSkyLights(out, sky, si.color, skyIndex, si.lightStyle, si.lightFilterRadius, scales);
+        }
+
+        if (si.surfaceLight <= 0) continue;
+        if (surface.surfaceType != bsp::MST_PLANAR && surface.surfaceType != bsp::MST_TRIANGLE_SOUP &&
+            surface.surfaceType != bsp::MST_PATCH)
+            continue;
+        EmitterGeometry g = geometryOf(static_cast<int>(i));
+        if (si.autosprite) {
+            Bounds b;
+            for (const Vec3& p : g.xyz) b.add(p);
+            if (b.empty()) continue;
+            Light light;
+            light.type = LightType::Point;
+            light.photons = si.surfaceLight * scales.pointScale;
+            light.origin = b.center();
+            light.color = si.color;
+            light.falloffTolerance = scales.falloffTolerance;
+            light.fast = scales.fast || scales.fastPoint;
+            light.style = scales.noStyles ? 0 : si.lightStyle;
+            out.push_back(light);
+            continue;
+        }
+        appendAreaLights(out, g, si, scales);
+    }
+    return out;
+}
+
+float lightEnvelope(const Light& light, bool forceFast) {
+    constexpr float kInfinite = std::numeric_limits<float>::infinity();
+    if (light.controlled) return light.type == LightType::Sun ? kInfinite : light.controlled->falloffEnd;
+    if (!(light.fast || forceFast) || light.type == LightType::Sun || light.falloffTolerance <= 0) return kInfinite;
+    switch (light.type) {
+        case LightType::Point:
+        case LightType::Spot:
+            if (light.linear) return std::max(0.f, (light.photons / 8000.0f - light.falloffTolerance) / light.fade);
+            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance);
+        case LightType::Area: {
+            // Beyond this distance the inverse-square estimate of the emitter is below tolerance.
+            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance) + 16.0f;
+        }
+        default:
+            return kInfinite;
+    }
+}
+
+}  // namespace q3::light

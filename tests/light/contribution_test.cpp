@@ -1,0 +1,401 @@
+// Light contributions against the analytic formulas of q3map2 and of the controlled model.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "light_contribution.h"
+#include "light_test_util.h"
+#include "trace_scene.h"
+
+namespace q3::light {
+namespace {
+
+using test::quad;
+
+Light pointLight(Vec3 origin, float intensity) {
+    Light l;
+    l.type = LightType::Point;
+    l.origin = origin;
+    l.photons = intensity * 7500.0f;
+    return l;
+}
+
+SamplePoint floorSample(Vec3 p) { return SamplePoint{p, {0, 0, 1}, -1, false}; }
+
+TEST(PointLight, InverseSquareWithAngle) {
+    Light l = pointLight({0, 0, 100}, 300);
+    LightingEnv env;
+    auto c = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ(c->color.x, 2250000.0f / 10000.0f);
+    EXPECT_EQ(c->direction, (Vec3{0, 0, 1}));
+
+    auto off = lightToSample(l, floorSample({60, 0, 0}), env);
+    ASSERT_TRUE(off);
+    const float d2 = 60 * 60 + 100 * 100;
+    const float cosine = 100 / std::sqrt(d2);
+    EXPECT_NEAR(off->color.y, 2250000.0f / d2 * cosine, 1e-3);
+
+    // Closer than 16 units: clamped distance.
+    Light near = pointLight({0, 0, 4}, 1);
+    auto n = lightToSample(near, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(n);
+    EXPECT_FLOAT_EQ(n->color.x, 7500.0f / 256.0f);
+
+    // Behind the surface: nothing.
+    EXPECT_FALSE(lightToSample(pointLight({0, 0, -100}, 300), floorSample({0, 0, 0}), env));
+}
+
+TEST(PointLight, ExtraDistAndAngleScaleAndColor) {
+    Light l = pointLight({0, 0, 100}, 300);
+    l.extraDist = 50;
+    l.color = {1, 0.5f, 0};
+    l.style = 3;
+    LightingEnv env;
+    auto c = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ(c->color.x, 2250000.0f / (100 * 100 + 50 * 50));
+    EXPECT_FLOAT_EQ(c->color.y, c->color.x * 0.5f);
+    EXPECT_EQ(c->color.z, 0);
+    EXPECT_EQ(c->style, 3);
+
+    Light a = pointLight({100, 0, 100}, 300);
+    a.angleScale = 0.5f;  // angle = min(1, cos/0.5) = 1 at 45 degrees
+    auto s = lightToSample(a, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->color.x, 2250000.0f / 20000.0f, 1e-3);
+}
+
+TEST(PointLight, LinearFalloff) {
+    Light l = pointLight({0, 0, 100}, 300);
+    l.linear = true;
+    l.angleAttenuation = false;
+    l.fade = 1;
+    LightingEnv env;
+    auto c = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ(c->color.x, 2250000.0f / 8000.0f - 100.0f);
+    l.fade = 2;
+    c = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ(c->color.x, 2250000.0f / 8000.0f - 200.0f);
+    // Beyond the point where the line reaches zero: nothing.
+    EXPECT_FALSE(lightToSample(l, floorSample({0, 0, -100}), env));
+}
+
+TEST(PointLight, FastEnvelopeCutsBelowTolerance) {
+    Light l = pointLight({0, 0, 0}, 1);  // photons 7500, envelope sqrt(7500) ~ 86.6
+    l.fast = true;
+    LightingEnv env;
+    EXPECT_TRUE(lightToSample(l, SamplePoint{{0, 0, -80}, {0, 0, 1}}, env));
+    EXPECT_FALSE(lightToSample(l, SamplePoint{{0, 0, -90}, {0, 0, 1}}, env));
+    l.fast = false;
+    EXPECT_TRUE(lightToSample(l, SamplePoint{{0, 0, -90}, {0, 0, 1}}, env));
+}
+
+TEST(SpotLight, ConeAndEdgeFade) {
+    Light l = pointLight({0, 0, 100}, 300);
+    l.type = LightType::Spot;
+    l.normal = {0, 0, -1};
+    l.radiusByDist = (64.0f + 16.0f) / 100.0f;  // radius 80 at the floor
+    LightingEnv env;
+    auto centre = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(centre);
+    EXPECT_FLOAT_EQ(centre->color.x, 225.0f);
+    auto edge = lightToSample(l, floorSample({70, 0, 0}), env);
+    ASSERT_TRUE(edge);
+    const float d2 = 70 * 70 + 100 * 100;
+    EXPECT_NEAR(edge->color.x, 2250000.0f / d2 * (100 / std::sqrt(d2)) * (80.0f - 70.0f) / 32.0f, 1e-3);
+    EXPECT_FALSE(lightToSample(l, floorSample({90, 0, 0}), env));
+}
+
+TEST(Occlusion, WallBetweenLightAndFloor) {
+    std::vector<SceneSurface> s{quad({-64, -64, 50}, {128, 0, 0}, {0, 128, 0})};
+    TraceScene scene(s, {});
+    LightingEnv env;
+    env.scene = &scene;
+    Light l = pointLight({0, 0, 100}, 300);
+    EXPECT_FALSE(lightToSample(l, floorSample({0, 0, 0}), env));
+    auto open = lightToSample(l, floorSample({200, 0, 0}), env);
+    ASSERT_TRUE(open);
+    const float d2 = 200 * 200 + 100 * 100;
+    EXPECT_NEAR(open->color.x, 2250000.0f / d2 * (100 / std::sqrt(d2)), 1e-3);
+}
+
+TEST(Occlusion, AlphaGrateTintsPointLight) {
+    LightImage img;
+    img.width = img.height = 1;
+    img.rgba = {255, 255, 255, 192};
+    LightingShader grate;
+    grate.alphaShadow = true;
+    grate.translucent = true;
+    grate.lightImage = &img;
+    std::vector<SceneSurface> s{quad({-64, -64, 50}, {128, 0, 0}, {0, 128, 0}, &grate)};
+    TraceScene scene(s, {});
+    LightingEnv env;
+    env.scene = &scene;
+    auto c = lightToSample(pointLight({0, 0, 100}, 300), floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->color.x, 225.0f * (255.0f - 192.0f) / 255.0f, 1e-3);
+}
+
+struct SkyBox {
+    LightingShader skyShader;
+    std::vector<SceneSurface> surfaces;
+    SkyBox() {
+        skyShader.sky = true;
+        surfaces.push_back(quad({-4096, -4096, 1000}, {8192, 0, 0}, {0, 8192, 0}, &skyShader, 0));
+    }
+};
+
+TEST(SunLight, ThroughSkyWithLambert) {
+    SkyBox box;
+    TraceScene scene(box.surfaces, {});
+    LightingEnv env;
+    env.scene = &scene;
+    Light sun;
+    sun.type = LightType::Sun;
+    sun.normal = normalize(Vec3{1, 0, 1});
+    sun.photons = 200;
+    sun.color = {1, 0.8f, 0.6f};
+    sun.skyIndex = 0;
+    auto c = lightToSample(sun, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->color.x, 200.0f * std::sqrt(0.5f), 1e-3);
+    EXPECT_NEAR(c->color.z, 200.0f * std::sqrt(0.5f) * 0.6f, 1e-3);
+    EXPECT_EQ(c->direction, sun.normal);
+
+    // Grid: no angle term.
+    auto g = lightToGridPoint(sun, {0, 0, 0}, -1, env);
+    ASSERT_TRUE(g);
+    EXPECT_FLOAT_EQ(g->color.x, 200.0f);
+
+    // Masked by the wrong sky.
+    sun.skyIndex = 1;
+    EXPECT_FALSE(lightToSample(sun, floorSample({0, 0, 0}), env));
+    EXPECT_FALSE(lightToGridPoint(sun, {0, 0, 0}, -1, env));
+    sun.skyIndex = -1;
+    EXPECT_TRUE(lightToSample(sun, floorSample({0, 0, 0}), env));
+}
+
+TEST(SunLight, TwoSidedSurfacesAreLitFromBelow) {
+    Light sun;
+    sun.type = LightType::Sun;
+    sun.normal = {0, 0, 1};
+    sun.photons = 100;
+    LightingEnv env;
+    SamplePoint down{{0, 0, 0}, {0, 0, -1}, -1, false};
+    EXPECT_FALSE(lightToSample(sun, down, env));
+    down.twoSided = true;
+    auto c = lightToSample(sun, down, env);
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ(c->color.x, 100);
+}
+
+// Form factor of a differential area parallel to a rectangle, with the rectangle's corner above it.
+double cornerFormFactor(double a, double b, double h) {
+    const double x = a / h, y = b / h;
+    return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+            y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+           (2 * kPiD);
+}
+
+TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
+    const float h = 100;
+    std::vector<Vec3> square{{-50, -50, h}, {-50, 50, h}, {50, 50, h}, {50, -50, h}};
+    const double expected = 4 * cornerFormFactor(50, 50, h);
+    float ff = pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, square);
+    EXPECT_NEAR(std::fabs(ff), expected, 1e-4);
+
+    // Off-centre: point under a corner of a 100 x 60 rectangle.
+    std::vector<Vec3> rect{{0, 0, h}, {0, 60, h}, {100, 60, h}, {100, 0, h}};
+    EXPECT_NEAR(std::fabs(pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, rect)), cornerFormFactor(100, 60, h), 1e-4);
+}
+
+TEST(AreaLight, ContributionFromSurfaceLight) {
+    LightingShader sh;
+    sh.surfaceLight = 1000;
+    sh.backsplashFraction = 0;
+    sh.backsplashSet = true;
+    EmitterGeometry g;
+    const float h = 100;
+    g.xyz = {{-50, -50, h}, {50, -50, h}, {50, 50, h}, {-50, 50, h}};
+    g.normals.assign(4, Vec3{0, 0, -1});
+    g.triangles = {0, 1, 2, 0, 2, 3};
+    std::vector<Light> lights;
+    appendAreaLights(lights, g, sh, {});
+    ASSERT_EQ(lights.size(), 2u);  // one per triangle, no chopping at the default 999
+    LightingEnv env;
+    std::vector<LightContribution> out;
+    gatherSampleLight(lights, floorSample({0, 0, 0}), env, out);
+    ASSERT_EQ(out.size(), 2u);
+    const double expected = 4 * cornerFormFactor(50, 50, h) * 1000 * 3 * 0.25;
+    EXPECT_NEAR(out[0].color.x + out[1].color.x, expected, expected * 1e-4);
+
+    // Grid point: the normal is the direction to each emitter's origin.
+    out.clear();
+    gatherGridLight(lights, {0, 0, 0}, -1, env, out);
+    ASSERT_EQ(out.size(), 2u);
+    for (const LightContribution& c : out) {
+        const Light& l = lights[&c - out.data()];
+        float ff = pointToPolygonFormFactor({0, 0, 0}, normalize(l.origin), l.winding);
+        EXPECT_NEAR(c.color.x, std::fabs(ff) * 750.0f, 1e-3);
+    }
+
+    // -faster: inverse square with both cosines.
+    env.settings.faster = true;
+    auto f = lightToSample(lights[0], floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(f);
+    const Vec3 to = lights[0].origin;
+    const float d = length(to);
+    const float cosines = (to.z / d) * (to.z / d);
+    EXPECT_NEAR(f->color.x, lights[0].photons / (d * d) * cosines, 1e-2);
+
+    // Behind the emitter: nothing.
+    env.settings.faster = false;
+    EXPECT_FALSE(lightToSample(lights[0], SamplePoint{{0, 0, 200}, {0, 0, -1}}, env));
+}
+
+TEST(GridPoint, PointLightHasNoAngleTerm) {
+    Light l = pointLight({100, 0, 0}, 300);
+    LightingEnv env;
+    auto g = lightToGridPoint(l, {0, 0, 0}, -1, env);
+    ASSERT_TRUE(g);
+    EXPECT_FLOAT_EQ(g->color.x, 225.0f);
+    EXPECT_EQ(g->direction, (Vec3{1, 0, 0}));
+    l.affectsGrid = false;
+    EXPECT_FALSE(lightToGridPoint(l, {0, 0, 0}, -1, env));
+    l.affectsGrid = true;
+    l.affectsSurfaces = false;
+    EXPECT_FALSE(lightToSample(l, floorSample({0, 0, 0}), env));
+    EXPECT_TRUE(lightToGridPoint(l, {0, 0, 0}, -1, env));
+}
+
+TEST(GridPoint, NearOccludersAreNotIgnored) {
+    std::vector<SceneSurface> s{quad({-64, -64, 2}, {128, 0, 0}, {0, 128, 0})};
+    TraceScene scene(s, {});
+    LightingEnv env;
+    env.scene = &scene;
+    EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+}
+
+TEST(SunOnly, SkipsEverythingButSuns) {
+    LightingEnv env;
+    env.settings.sunOnly = true;
+    EXPECT_FALSE(lightToSample(pointLight({0, 0, 100}, 300), floorSample({0, 0, 0}), env));
+    Light sun;
+    sun.type = LightType::Sun;
+    sun.normal = {0, 0, 1};
+    sun.photons = 10;
+    EXPECT_TRUE(lightToSample(sun, floorSample({0, 0, 0}), env));
+}
+
+// Controlled model ----------------------------------------------------------------------------
+
+Light controlledLight(Vec3 origin, ControlledParams p) {
+    Light l;
+    l.type = LightType::Point;
+    l.origin = origin;
+    l.controlled = p;
+    return l;
+}
+
+TEST(ControlledModel, FalloffCurve) {
+    ControlledParams p;
+    p.falloffStart = 50;
+    p.falloffEnd = 250;
+    p.falloffCurvature = 0;
+    EXPECT_FLOAT_EQ(controlledFalloff(p, 40), 1);
+    EXPECT_FLOAT_EQ(controlledFalloff(p, 150), 0.5f);
+    EXPECT_FLOAT_EQ(controlledFalloff(p, 250), 0);
+    p.falloffCurvature = 1;
+    const float s2 = 50 * 50, e2 = 250 * 250;
+    EXPECT_NEAR(controlledFalloff(p, 100), (s2 / (100 * 100) - s2 / e2) / (1 - s2 / e2), 1e-6);
+    p.falloffCurvature = 0.25f;
+    p.falloffStart = 0;  // inverse-square part uses s = 16
+    const float lin = 1 - 100.0f / 250.0f;
+    const float isq = (256.0f / 10000.0f - 256.0f / e2) / (1 - 256.0f / e2);
+    EXPECT_NEAR(controlledFalloff(p, 100), 0.75f * lin + 0.25f * isq, 1e-6);
+}
+
+TEST(ControlledModel, IncidenceAndValue) {
+    ControlledParams p;
+    p.brightness = 0.5f;
+    p.falloffStart = 1000;
+    p.falloffEnd = 2000;
+    p.dotProductWeight = 0.4f;
+    Light l = controlledLight({100, 0, 100}, p);
+    l.color = {1, 0.5f, 0};
+    LightingEnv env;
+    auto c = lightToSample(l, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    const float incidence = 0.6f + 0.4f * std::sqrt(0.5f);
+    EXPECT_NEAR(c->color.x, 255.0f * 0.5f * incidence, 1e-3);
+    EXPECT_NEAR(c->color.y, 255.0f * 0.5f * 0.5f * incidence, 1e-3);
+    // Never lit from behind, whatever the weight.
+    p.dotProductWeight = 0;
+    Light behind = controlledLight({0, 0, -50}, p);
+    EXPECT_FALSE(lightToSample(behind, floorSample({0, 0, 0}), env));
+    // Beyond falloff_end_dist: culled.
+    p.falloffEnd = 1200;
+    EXPECT_FALSE(lightToSample(controlledLight({0, 0, 1300}, p), floorSample({0, 0, 0}), env));
+    // Negative brightness subtracts light.
+    p.brightness = -1;
+    auto neg = lightToSample(controlledLight({0, 0, 100}, p), floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(neg);
+    EXPECT_FLOAT_EQ(neg->color.x, -255.0f);
+}
+
+TEST(ControlledModel, SpotCone) {
+    ControlledParams p;
+    p.falloffStart = 1000;
+    p.falloffEnd = 2000;
+    p.angleHotspot = 40;
+    p.anglePenumbra = 80;
+    p.dotProductWeight = 0;
+    const Vec3 axis{0, 0, -1};
+    auto at = [](float deg) { return Vec3{-std::sin(degToRad(deg)), 0, std::cos(degToRad(deg))}; };
+    EXPECT_FLOAT_EQ(controlledCone(p, axis, at(10)), 1);
+    EXPECT_NEAR(controlledCone(p, axis, at(30)), 0.5f, 1e-4);
+    EXPECT_FLOAT_EQ(controlledCone(p, axis, at(50)), 0);
+    p.sphericalAmbient = 0.2f;
+    EXPECT_NEAR(controlledCone(p, axis, at(30)), 0.2f + 0.8f * 0.5f, 1e-4);
+    EXPECT_NEAR(controlledCone(p, axis, at(90)), 0.2f, 1e-6);
+
+    Light spot = controlledLight({0, 0, 100}, p);
+    spot.type = LightType::Spot;
+    spot.normal = axis;
+    LightingEnv env;
+    const float x = 100 * std::tan(degToRad(30));
+    auto c = lightToSample(spot, floorSample({x, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->color.x, 255.0f * (0.2f + 0.8f * 0.5f), 0.05f);
+    // Grid: K without incidence.
+    auto g = lightToGridPoint(spot, {x, 0, 0}, -1, env);
+    ASSERT_TRUE(g);
+    EXPECT_NEAR(g->color.x, 255.0f * (0.2f + 0.8f * 0.5f), 0.05f);
+}
+
+TEST(ControlledModel, SunOnlyThroughSkyWithFullDotWeight) {
+    SkyBox box;
+    TraceScene scene(box.surfaces, {});
+    LightingEnv env;
+    env.scene = &scene;
+    ControlledParams p;
+    p.brightness = 0.8f;
+    p.dotProductWeight = 0.1f;  // ignored: suns force 1
+    Light sun = controlledLight({}, p);
+    sun.type = LightType::Sun;
+    sun.normal = normalize(Vec3{0, 1, 1});
+    auto c = lightToSample(sun, floorSample({0, 0, 0}), env);
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->color.x, 255.0f * 0.8f * std::sqrt(0.5f), 1e-3);
+    // A roof in the way: no sun.
+    box.surfaces.push_back(quad({-100, -100, 50}, {200, 0, 0}, {0, 400, 0}));
+    TraceScene roofed(box.surfaces, {});
+    env.scene = &roofed;
+    EXPECT_FALSE(lightToSample(sun, floorSample({0, 0, 0}), env));
+}
+
+}  // namespace
+}  // namespace q3::light

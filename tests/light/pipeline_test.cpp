@@ -1,0 +1,184 @@
+// The whole -light stage on small BSPs built by the test: luxel and grid values against the
+// formulas, occlusion by other surfaces, and output that does not depend on the thread count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "color_pipeline.h"
+#include "file_io.h"
+#include "grid_encode.h"
+#include "light_context.h"
+#include "light_stage.h"
+#include "lightmap_layout.h"
+#include "test_data.h"
+
+namespace q3::light {
+namespace {
+
+// Adds a planar quad (corner + two edges, normal = cross(edgeV, edgeU) for Quake's clockwise order).
+void addQuad(bsp::Bsp& b, Vec3 corner, Vec3 edgeU, Vec3 edgeV, int shader) {
+    const Vec3 normal = normalize(cross(edgeV, edgeU));
+    bsp::Surface s{};
+    s.shaderNum = shader;
+    s.fogNum = -1;
+    s.surfaceType = bsp::MST_PLANAR;
+    s.firstVert = static_cast<int32_t>(b.drawVerts.size());
+    s.numVerts = 4;
+    s.firstIndex = static_cast<int32_t>(b.drawIndexes.size());
+    s.numIndexes = 6;
+    s.lightmapNum = 0;
+    normal.toArray(s.lightmapVecs[2]);
+    const Vec3 corners[4] = {corner, corner + edgeU, corner + edgeU + edgeV, corner + edgeV};
+    const float st[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int i = 0; i < 4; ++i) {
+        bsp::DrawVert v{};
+        corners[i].toArray(v.xyz);
+        v.st[0] = st[i][0];
+        v.st[1] = st[i][1];
+        normal.toArray(v.normal);
+        v.color[0] = v.color[1] = v.color[2] = v.color[3] = 255;
+        b.drawVerts.push_back(v);
+    }
+    for (int32_t idx : {0, 2, 1, 0, 3, 2}) b.drawIndexes.push_back(idx);
+    b.surfaces.push_back(s);
+}
+
+// A floor 128 x 128 at z = 0 (facing up), a small opaque table at z = 50 over its middle, a point
+// light at (64, 64, 100); no BSP tree (every point is in the open).
+bsp::Bsp makeRoom() {
+    bsp::Bsp b;
+    b.version = bsp::kVersionQ3;
+    b.headerLumps = 18;
+    bsp::Shader sh{};
+    std::strcpy(sh.name, "textures/test/floor");
+    sh.contentFlags = 1;
+    b.shaders.push_back(sh);
+    addQuad(b, {0, 0, 0}, {0, 128, 0}, {128, 0, 0}, 0);    // floor, normal +z
+    addQuad(b, {48, 48, 50}, {0, 32, 0}, {32, 0, 0}, 0);   // table top, normal +z
+    bsp::Model world{};
+    world.mins[0] = world.mins[1] = world.mins[2] = 0;
+    world.maxs[0] = world.maxs[1] = 128;
+    world.maxs[2] = 256;
+    world.firstSurface = 0;
+    world.numSurfaces = static_cast<int32_t>(b.surfaces.size());
+    b.models.push_back(world);
+    std::vector<bsp::Entity> ents(2);
+    ents[0].pairs = {{"classname", "worldspawn"}};
+    ents[1].pairs = {{"classname", "light"}, {"origin", "64 64 100"}, {"light", "300"}};
+    b.entities = bsp::unparseEntities(ents);
+    return b;
+}
+
+std::filesystem::path writeRoom(const std::filesystem::path& dir, const bsp::Bsp& b) {
+    std::filesystem::create_directories(dir / "maps");
+    std::filesystem::path path = dir / "maps" / "room.bsp";
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    return path;
+}
+
+int runStage(const std::filesystem::path& bspPath, int threads, LightOptions options = {}) {
+    CommonOptions common;
+    common.mapPath = bspPath;
+    common.threads = threads;
+    common.commandLine = "-light room.bsp";
+    Log log(false);
+    return runLightStage(options, common, log);
+}
+
+// Texel of surface `s` at lightmap luxel (x, y).
+std::array<uint8_t, 3> texel(const bsp::Bsp& b, int s, int x, int y) {
+    const bsp::Surface& surface = b.surfaces[static_cast<size_t>(s)];
+    const size_t page = static_cast<size_t>(surface.lightmapNum) * 128 * 128 * 3;
+    const size_t at = page + (static_cast<size_t>(surface.lightmapY + y) * 128 + surface.lightmapX + x) * 3;
+    return {b.lightmaps[at], b.lightmaps[at + 1], b.lightmaps[at + 2]};
+}
+
+TEST(LightPipeline, FloorLuxelsMatchInverseSquareAndShadow) {
+    const bsp::Bsp room = makeRoom();
+    const auto path = writeRoom(test::tempDir(), room);
+    ASSERT_EQ(runStage(path, 2), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    ASSERT_EQ(lit.surfaces[0].lightmapNum, 0);
+    ASSERT_FALSE(lit.lightmaps.empty());
+
+    // Where the layout puts the floor's luxels.
+    SurfaceGeometry g = surfaceGeometry(room, 0);
+    std::optional<RawLightmap> raw = layoutSurfaceLightmap(g, SurfaceLightmapParams{}, LayoutOptions{});
+    ASSERT_TRUE(raw);
+    ASSERT_EQ(lit.surfaces[0].lightmapWidth, raw->width);
+    const ColorOptions color;
+    int checked = 0, shadowedCount = 0;
+    for (int y = 0; y < raw->height; ++y)
+        for (int x = 0; x < raw->width; ++x) {
+            const Luxel& lx = raw->luxel(x, y);
+            if (!lx.mapped) continue;
+            const Vec3 p = lx.origin;
+            const Vec3 toLight = Vec3{64, 64, 100} - p;
+            const float d = length(toLight);
+            // Shadow of the table (z = 50, x and y in 48..80) on the way to the light.
+            const float t = (50.0f - p.z) / (100.0f - p.z);
+            const Vec3 q = p + toLight * t;
+            const bool shadowed = q.x >= 48 && q.x <= 80 && q.y >= 48 && q.y <= 80;
+            const bool nearEdge = std::fabs(q.x - 48) < 2 || std::fabs(q.x - 80) < 2 || std::fabs(q.y - 48) < 2 ||
+                                  std::fabs(q.y - 80) < 2;
+            if (nearEdge) continue;
+            const float add = shadowed ? 0.0f : 2250000.0f / (d * d) * (toLight.z / d);
+            if (shadowed) ++shadowedCount;
+            const Rgb8 expected = colorToBytes(Vec3::splat(add), 1, color);
+            const auto got = texel(lit, 0, x, y);
+            EXPECT_EQ(got[0], expected[0]) << "luxel " << x << "," << y;
+            EXPECT_EQ(got[1], expected[1]);
+            ++checked;
+        }
+    EXPECT_GT(checked, 40);
+    EXPECT_GT(shadowedCount, 0);
+}
+
+TEST(LightPipeline, GridPointMatchesEncoding) {
+    const auto path = writeRoom(test::tempDir(), makeRoom());
+    ASSERT_EQ(runStage(path, 1), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    const GridLayout layout = computeGridLayout(kDefaultGridSize, lit);
+    ASSERT_EQ(static_cast<int>(lit.lightGrid.size()), layout.numPoints());
+    // Point (64, 64, 128): 28 units above the light, nothing in between.
+    int index = -1;
+    for (int i = 0; i < layout.numPoints(); ++i)
+        if (layout.pointOrigin(i) == Vec3{64, 64, 128}) index = i;
+    ASSERT_GE(index, 0);
+    LightContribution c{Vec3::splat(2250000.0f / (28.0f * 28.0f)), {0, 0, -1}, 0};
+    GridOptions options;
+    const bsp::GridPoint expected = encodeGridPoint(accumulateGridSample({&c, 1}, {}, options), options, ColorOptions{});
+    const bsp::GridPoint& got = lit.lightGrid[static_cast<size_t>(index)];
+    EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0);
+}
+
+TEST(LightPipeline, WorldspawnRecordsCommandLineAndVersion) {
+    const auto path = writeRoom(test::tempDir(), makeRoom());
+    ASSERT_EQ(runStage(path, 1), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    auto ents = bsp::parseEntities(lit.entities, "room.bsp");
+    ASSERT_FALSE(ents.empty());
+    EXPECT_EQ(ents[0].value("_q3map2_cmdline"), "q3map2 -light room.bsp");
+    EXPECT_FALSE(ents[0].value("_q3map2_version").empty());
+}
+
+TEST(LightPipeline, ThreadCountDoesNotChangeOutput) {
+    const bsp::Bsp room = makeRoom();
+    const std::filesystem::path dir = test::tempDir();
+    const auto one = writeRoom(dir / "one", room);
+    const auto two = writeRoom(dir / "two", room);
+    LightOptions options;
+    options.superSample = 2;
+    options.lightSamples = 3;
+    ASSERT_EQ(runStage(one, 1, options), 0);
+    ASSERT_EQ(runStage(two, 2, options), 0);
+    EXPECT_EQ(readFileBytes(one), readFileBytes(two));
+}
+
+TEST(LightPipeline, MissingBspIsAnError) {
+    EXPECT_ANY_THROW(runStage(test::tempDir() / "maps" / "nothing.bsp", 1));
+}
+
+}  // namespace
+}  // namespace q3::light

@@ -1,0 +1,156 @@
+// The Embree shadow scene: opaque walls, sky masking, alpha shadows and light filters.
+#include <gtest/gtest.h>
+
+#include "light_test_util.h"
+#include "trace_scene.h"
+
+namespace q3::light {
+namespace {
+
+using test::quad;
+
+LightImage solidImage(uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
+    LightImage img;
+    img.width = 1;
+    img.height = 1;
+    img.rgba = {r, g, b, a};
+    return img;
+}
+
+// A 2x1 image: left half transparent, right half opaque.
+LightImage halfImage() {
+    LightImage img;
+    img.width = 2;
+    img.height = 1;
+    img.rgba = {255, 255, 255, 0, 255, 255, 255, 255};
+    return img;
+}
+
+TEST(TraceScene, WallBlocksAndOpenSpaceDoesNot) {
+    std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128})};  // plane y = 50
+    TraceScene scene(s, {});
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 40, 0}), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({200, 0, 0}, {200, 100, 0}), (Vec3{1, 1, 1}));  // beside the wall
+    // The wall is closer than ignoreNear: ignored.
+    EXPECT_EQ(scene.transmission({0, 49, 0}, {0, 100, 0}, 1.5f), (Vec3{1, 1, 1}));
+    EXPECT_GE(scene.raysTraced(), 4u);
+}
+
+TEST(TraceScene, NonCastingSurfaces) {
+    LightingShader trans, nodraw, filter;
+    trans.translucent = true;
+    nodraw.nodraw = true;
+    filter.translucent = true;
+    filter.alphaShadow = true;
+    SceneSurface patch = quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    patch.isPatch = true;
+    EXPECT_FALSE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &trans), {}));
+    EXPECT_FALSE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &nodraw), {}));
+    EXPECT_TRUE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &filter), {}));
+    EXPECT_FALSE(TraceScene::castsShadow(patch, {}));
+    EXPECT_TRUE(TraceScene::castsShadow(patch, TraceSceneOptions{.patchShadows = true}));
+
+    std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &trans)};
+    TraceScene scene(s, {});
+    EXPECT_EQ(scene.casterCount(), 0u);
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{1, 1, 1}));
+}
+
+TEST(TraceScene, SunOnlyThroughItsOwnSky) {
+    LightingShader sky;
+    sky.sky = true;
+    // A sky ceiling at z = 500 (index 0) and a sky wall at x = 500 (index 1).
+    std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0),
+                                quad({500, -1000, -1000}, {0, 2000, 0}, {0, 0, 1400}, &sky, 1)};
+    TraceScene scene(s, {});
+    const Vec3 up{0, 0, 1}, side{1, 0, 0};
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 0), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 1), (Vec3{0, 0, 0}));   // wrong sky
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, -1), (Vec3{1, 1, 1}));  // any sky
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, side, 1), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, side, 0), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, Vec3{0, 0, -1}, -1), (Vec3{0, 0, 0}));  // no sky below
+    // Sky surfaces block point-light rays like walls.
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 0, 600}), (Vec3{0, 0, 0}));
+}
+
+TEST(TraceScene, OpaqueRoofBlocksSun) {
+    LightingShader sky;
+    sky.sky = true;
+    std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0),
+                                quad({-100, -100, 200}, {200, 0, 0}, {0, 200, 0})};
+    TraceScene scene(s, {});
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, {0, 0, 1}, 0), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.skyTransmission({300, 0, 0}, {0, 0, 1}, 0), (Vec3{1, 1, 1}));
+}
+
+TEST(TraceScene, AlphaShadowAndLightFilterAttenuate) {
+    LightImage grey = solidImage(255, 128, 0, 64);
+    LightingShader alpha, filter, both;
+    alpha.alphaShadow = true;
+    alpha.lightImage = &grey;
+    filter.lightFilter = true;
+    filter.lightImage = &grey;
+    both.alphaShadow = true;
+    both.lightFilter = true;
+    both.lightImage = &grey;
+
+    {
+        std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &alpha)};
+        TraceScene scene(s, {});
+        Vec3 t = scene.transmission({0, 0, 0}, {0, 100, 0});
+        EXPECT_FLOAT_EQ(t.x, (255.0f - 64.0f) / 255.0f);
+        EXPECT_FLOAT_EQ(t.y, t.x);
+    }
+    {
+        std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &filter)};
+        TraceScene scene(s, {});
+        Vec3 t = scene.transmission({0, 0, 0}, {0, 100, 0});
+        EXPECT_FLOAT_EQ(t.x, 1.0f);
+        EXPECT_FLOAT_EQ(t.y, 128.0f / 255.0f);
+        EXPECT_FLOAT_EQ(t.z, 0.0f);
+    }
+    {
+        // Two filtering grates in a row multiply; order of discovery does not matter.
+        std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &both),
+                                    quad({-64, 70, -64}, {128, 0, 0}, {0, 0, 128}, &alpha)};
+        TraceScene scene(s, {});
+        const float a = (255.0f - 64.0f) / 255.0f;
+        Vec3 t = scene.transmission({0, 0, 0}, {0, 100, 0});
+        EXPECT_NEAR(t.x, a * a, 1e-6);
+        EXPECT_NEAR(t.y, 128.0f / 255.0f * a * a, 1e-6);
+        Vec3 back = scene.transmission({0, 100, 0}, {0, 0, 0});
+        EXPECT_EQ(t, back);
+        // An opaque wall behind the grates still blocks.
+        std::vector<SceneSurface> s2 = s;
+        s2.push_back(quad({-64, 90, -64}, {128, 0, 0}, {0, 0, 128}));
+        TraceScene scene2(s2, {});
+        EXPECT_EQ(scene2.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{0, 0, 0}));
+        EXPECT_NEAR(scene2.transmission({0, 0, 0}, {0, 80, 0}).x, a * a, 1e-6);
+    }
+}
+
+TEST(TraceScene, AlphaShadowReadsTheTexelAtTheHit) {
+    LightImage half = halfImage();
+    LightingShader grate;
+    grate.alphaShadow = true;
+    grate.lightImage = &half;
+    // s runs along x from -64 (s=0) to 64 (s=1); nearest texel with q3map2's rounding:
+    // int(2s + 0.5) is texel 0 (transparent) for s < 0.25 and texel 1 (opaque) up to s = 0.75.
+    std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &grate)};
+    TraceScene scene(s, {});
+    EXPECT_EQ(scene.transmission({-56, 0, 0}, {-56, 100, 0}), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({8, 0, 0}, {8, 100, 0}), (Vec3{0, 0, 0}));
+}
+
+TEST(TraceScene, AlphaShadowWithoutImageIsOpaque) {
+    LightingShader grate;
+    grate.alphaShadow = true;
+    std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &grate)};
+    TraceScene scene(s, {});
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{0, 0, 0}));
+}
+
+}  // namespace
+}  // namespace q3::light

@@ -1,0 +1,105 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "bsp_tree.h"
+#include "test_data.h"
+
+namespace q3::light {
+namespace {
+
+// One node splitting at x = 0: leaf 0 (x > 0, cluster 0) and leaf 1 (x < 0, cluster 1) holding a
+// brush spanning x -64..-32, y and z -16..16.
+bsp::Bsp twoLeafBsp() {
+    bsp::Bsp b;
+    bsp::Shader solid{};
+    std::strcpy(solid.name, "textures/test/solid");
+    solid.contentFlags = contents::kSolid;
+    b.shaders = {solid};
+    b.planes = {{{1, 0, 0}, 0},   {{1, 0, 0}, -32}, {{-1, 0, 0}, 64}, {{0, 1, 0}, 16},
+                {{0, -1, 0}, 16}, {{0, 0, 1}, 16},  {{0, 0, -1}, 16}};
+    b.nodes = {{0, {-1, -2}, {-1000, -1000, -1000}, {1000, 1000, 1000}}};
+    b.leafs = {{0, 0, {0, -1000, -1000}, {1000, 1000, 1000}, 0, 0, 0, 0},
+               {1, 1, {-1000, -1000, -1000}, {0, 1000, 1000}, 0, 0, 0, 1}};
+    b.leafBrushes = {0};
+    b.brushes = {{0, 6, 0}};
+    for (int i = 1; i <= 6; ++i) b.brushSides.push_back({i, 0});
+    b.models = {{{-1000, -1000, -1000}, {1000, 1000, 1000}, 0, 0, 0, 1}};
+    // 2 clusters, 1 byte per row: cluster 0 sees only itself, cluster 1 sees both.
+    b.visibility = {2, 0, 0, 0, 1, 0, 0, 0, 0x01, 0x03};
+    return b;
+}
+
+TEST(BspTree, LeafClusterArea) {
+    const bsp::Bsp b = twoLeafBsp();
+    const BspTree tree(b);
+    EXPECT_EQ(tree.leafForPoint({10, 0, 0}), 0);
+    EXPECT_EQ(tree.leafForPoint({-10, 0, 0}), 1);
+    EXPECT_EQ(tree.clusterForPoint({-10, 0, 0}), 1);
+    EXPECT_EQ(tree.areaForPoint({-10, 0, 0}), 1);
+    // On the plane (within 0.1): the front leaf wins because it has a cluster.
+    EXPECT_EQ(tree.leafForPoint({0.05f, 0, 0}), 0);
+    EXPECT_EQ(tree.leafForPoint({-0.05f, 0, 0}), 0);
+    EXPECT_EQ(tree.leafForPoint({-0.2f, 0, 0}), 1);
+    bsp::Bsp noCluster = b;
+    noCluster.leafs[0].cluster = -1;
+    EXPECT_EQ(BspTree(noCluster).leafForPoint({0.05f, 0, 0}), 1);
+}
+
+TEST(BspTree, Visibility) {
+    bsp::Bsp b = twoLeafBsp();
+    const BspTree tree(b);
+    EXPECT_EQ(tree.numClusters(), 2);
+    EXPECT_TRUE(tree.clusterVisible(0, 0));
+    EXPECT_FALSE(tree.clusterVisible(0, 1));
+    EXPECT_TRUE(tree.clusterVisible(1, 0));
+    EXPECT_FALSE(tree.clusterVisible(-1, 0));
+    b.visibility.clear();
+    EXPECT_TRUE(BspTree(b).clusterVisible(0, 1));
+}
+
+TEST(BspTree, PointInOpaqueBrush) {
+    bsp::Bsp b = twoLeafBsp();
+    const BspTree tree(b);
+    EXPECT_TRUE(tree.brushIsOpaque(0));
+    EXPECT_EQ(tree.clusterForPointExt({-48, 0, 0}, 0), -1);  // -1 - brush 0
+    EXPECT_TRUE(tree.pointInSolid({-48, 0, 0}));
+    EXPECT_EQ(tree.clusterForPointExt({-20, 0, 0}, 0), 1);
+    EXPECT_EQ(tree.clusterForPointExt({-48, 0, 16.1f}, 0), 1);
+    // Epsilon: a point 0.1 outside counts as inside with epsilon 0.125 (q3map2's LUXEL_EPSILON).
+    EXPECT_EQ(tree.clusterForPointExt({-48, 0, 16.1f}, 0.125f), -1);
+    // A water brush does not block light; the caller's shader table can override.
+    b.shaders[0].contentFlags = contents::kWater;
+    EXPECT_EQ(BspTree(b).clusterForPointExt({-48, 0, 0}, 0), 1);
+    const uint8_t opaqueOverride[] = {0};
+    EXPECT_EQ(BspTree(b, opaqueOverride).clusterForPointExt({-48, 0, 0}, 0), -1);
+    b.shaders[0].contentFlags = contents::kSolid;
+    b.shaders[0].surfaceFlags = contents::kSurfAlphaShadow;
+    EXPECT_FALSE(BspTree(b).brushIsOpaque(0));
+}
+
+TEST(BspTree, NudgeSearchIsNearestFirst) {
+    const auto offsets = nudgeOffsets(2.0f, 1.0f);
+    ASSERT_FALSE(offsets.empty());
+    EXPECT_EQ(offsets[0], (Vec3{0, 0, 0}));
+    EXPECT_EQ(offsets[1], (Vec3{0, 0, -1}));  // length 1, then by z, y, x
+    EXPECT_EQ(offsets.back(), (Vec3{0, 0, 2}));
+    // 1 + 6 + 12 + 8 (len^2 <= 3) + 6 (len 2) = 33 lattice points within radius 2.
+    EXPECT_EQ(offsets.size(), 33u);
+    for (size_t i = 1; i < offsets.size(); ++i) EXPECT_LE(dot(offsets[i - 1], offsets[i - 1]), dot(offsets[i], offsets[i]));
+
+    const bsp::Bsp b = twoLeafBsp();
+    const BspTree tree(b);
+    // Inside the brush, 2 units below its top face: the nearest free lattice point is 3 units up.
+    const auto free = tree.nudgeOutOfSolid({-48, 0, 14}, 4.0f, 1.0f);
+    ASSERT_TRUE(free.has_value());
+    EXPECT_EQ(*free, (Vec3{-48, 0, 17}));
+    EXPECT_FALSE(tree.nudgeOutOfSolid({-48, 0, 0}, 4.0f, 1.0f).has_value());
+    EXPECT_EQ(*tree.nudgeOutOfSolid({10, 0, 0}, 4.0f, 1.0f), (Vec3{10, 0, 0}));
+    const auto coarse = nudgeOffsets(8.0f, 4.0f);  // 0, +-4, +-8 per axis within radius 8
+    EXPECT_EQ(*tree.nudgeOutOfSolid({-48, 0, 14}, coarse), (Vec3{-48, 0, 18}));
+}
+
+}  // namespace
+}  // namespace q3::light

@@ -1,0 +1,115 @@
+#include <gtest/gtest.h>
+
+#include "lightmap_filter.h"
+
+namespace q3::light {
+namespace {
+
+LuxelImage uniform(int w, int h, Vec3 c) {
+    LuxelImage img(w, h, LuxelState::Mapped);
+    for (Vec3& v : img.color) v = c;
+    return img;
+}
+
+TEST(LightmapFilter, FilterRadiusInLuxels) {
+    EXPECT_EQ(luxelFilterRadius(32, 16, 1, false), 2);
+    EXPECT_EQ(luxelFilterRadius(48, 16, 2, false), 6);
+    EXPECT_EQ(luxelFilterRadius(8, 16, 1, false), 1);  // int(0.5) = 0, but a radius was asked for
+    EXPECT_EQ(luxelFilterRadius(0, 16, 2, true), 1);   // -filter alone
+    EXPECT_EQ(luxelFilterRadius(0, 16, 2, false), 0);
+    EXPECT_EQ(luxelFilterRadius(-5, 16, 2, false), 0);
+}
+
+TEST(LightmapFilter, BoxFilterWeights) {
+    LuxelImage img = uniform(3, 3, {0, 0, 0});
+    img.color[img.index(1, 1)] = {9, 18, 0};
+    const LuxelImage f = boxFilterLuxels(img, 1);
+    // Centre: weights 1 (itself), 0.5 x 4 edges, 0.25 x 4 corners = 4.
+    EXPECT_FLOAT_EQ(f.color[f.index(1, 1)].x, 9.0f / 4.0f);
+    EXPECT_FLOAT_EQ(f.color[f.index(1, 1)].y, 18.0f / 4.0f);
+    // Corner (0,0): itself 1, (1,0) and (0,1) 0.5, (1,1) 0.25 -> 0.25*9 / 2.25.
+    EXPECT_FLOAT_EQ(f.color[f.index(0, 0)].x, 1.0f);
+    // Edge (1,0): itself 1, (0,0),(2,0) 0.5, (1,1) 0.5, (0,1),(2,1) 0.25 -> 0.5*9 / 3.
+    EXPECT_FLOAT_EQ(f.color[f.index(1, 0)].x, 1.5f);
+    // Radius 0 changes nothing.
+    EXPECT_EQ(boxFilterLuxels(img, 0).color, img.color);
+}
+
+TEST(LightmapFilter, BoxFilterIgnoresUnmappedLuxels) {
+    LuxelImage img = uniform(3, 1, {10, 10, 10});
+    img.color[2] = {100, 100, 100};
+    img.state[2] = LuxelState::Unmapped;
+    const LuxelImage f = boxFilterLuxels(img, 1);
+    EXPECT_FLOAT_EQ(f.color[1].x, 10.0f);     // the unmapped neighbour does not bleed in
+    EXPECT_FLOAT_EQ(f.color[2].x, 100.0f);    // and is itself left alone
+    EXPECT_EQ(f.state[2], LuxelState::Unmapped);
+}
+
+TEST(LightmapFilter, FillFromNeighbours) {
+    LuxelImage img = uniform(3, 3, {0, 0, 0});
+    for (int i = 0; i < 9; ++i) img.color[size_t(i)] = {float(i), 0, 0};
+    img.state[4] = LuxelState::Unmapped;
+    img.state[0] = LuxelState::Occluded;
+    LuxelImage plain = img;
+    fillFromNeighbours(plain, {0, 0, 0}, false, false);
+    // Centre: mapped neighbours 1,2,3,5,6,7,8 (0 is occluded) -> 32/7.
+    EXPECT_FLOAT_EQ(plain.color[4].x, 32.0f / 7.0f);
+    EXPECT_EQ(plain.state[4], LuxelState::Flooded);
+    // Corner 0: mapped neighbours 1 and 3 (4 was unmapped before the pass) -> 2.
+    EXPECT_FLOAT_EQ(plain.color[0].x, 2.0f);
+    EXPECT_EQ(plain.state[0], LuxelState::Flooded);
+    EXPECT_FLOAT_EQ(plain.color[8].x, 8.0f);  // mapped luxels untouched
+
+    LuxelImage dark = img;
+    fillFromNeighbours(dark, {7, 0, 0}, true, false);
+    EXPECT_FLOAT_EQ(dark.color[4].x, (32.0f + 14.0f) / 9.0f);
+
+    // Isolated unmapped luxel stays unmapped.
+    LuxelImage lonely(1, 1, LuxelState::Unmapped);
+    fillFromNeighbours(lonely, {}, false, false);
+    EXPECT_EQ(lonely.state[0], LuxelState::Unmapped);
+}
+
+TEST(LightmapFilter, SplotchFix) {
+    LuxelImage img = uniform(3, 1, {50, 50, 50});
+    img.color[1] = {5, 60, 60};  // one channel at or below the ambient: a splotch
+    img.color[2] = {10, 10, 10};  // equal to the ambient: skipped as a source
+    fillFromNeighbours(img, {10, 10, 10}, false, true);
+    EXPECT_FLOAT_EQ(img.color[1].x, 50.0f);
+    EXPECT_EQ(img.state[1], LuxelState::Mapped);
+    // Luxel 2 is itself at the ambient: refilled from luxel 1's old splotch value.
+    EXPECT_FLOAT_EQ(img.color[2].x, 5.0f);
+}
+
+TEST(LightmapFilter, DownsampleSuperLuxels) {
+    LuxelImage s(4, 4, LuxelState::Unmapped);
+    auto set = [&](int x, int y, LuxelState st, Vec3 c) {
+        s.state[s.index(x, y)] = st;
+        s.color[s.index(x, y)] = c;
+    };
+    // Block (0,0): two lit samples and one occluded -> mean of the lit ones.
+    set(0, 0, LuxelState::Mapped, {10, 20, 30});
+    set(1, 0, LuxelState::Flooded, {30, 20, 10});
+    set(0, 1, LuxelState::Occluded, {1000, 0, 0});
+    // Block (1,0): occluded only -> their mean, negative clamped.
+    set(2, 0, LuxelState::Occluded, {4, -8, 0});
+    set(3, 1, LuxelState::Occluded, {8, -8, 0});
+    // Block (0,1): nothing; block (1,1): one lit sample.
+    set(3, 3, LuxelState::Mapped, {90, 90, 90});
+    const BspLuxels b = downsampleSuperLuxels(s, 2);
+    ASSERT_EQ(b.width, 2);
+    ASSERT_EQ(b.height, 2);
+    EXPECT_EQ(b.color[0], (Vec3{20, 20, 20}));
+    EXPECT_EQ(b.color[1], (Vec3{6, 0, 0}));
+    EXPECT_EQ(b.color[3], (Vec3{90, 90, 90}));
+    // The empty block borrows the mean of its three neighbours (before clamping of block 1: -8).
+    EXPECT_EQ(b.used[2], 1);
+    EXPECT_NEAR(b.color[2].x, (20 + 6 + 90) / 3.0f, 1e-4f);
+    EXPECT_NEAR(b.color[2].y, (20 - 8 + 90) / 3.0f, 1e-4f);
+    // All empty: stays unused.
+    const BspLuxels none = downsampleSuperLuxels(LuxelImage(2, 2), 2);
+    EXPECT_EQ(none.used[0], 0);
+}
+
+}  // namespace
+}  // namespace q3::light

@@ -1,0 +1,245 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "file_io.h"
+#include "image.h"
+#include "lightmap_pack.h"
+#include "log.h"
+#include "test_data.h"
+
+namespace q3::light {
+namespace {
+
+// A w x h block whose texels all differ (so it is never solid), offset by `seed`.
+LightmapBlock gradient(int w, int h, int seed, std::string key = "textures/a") {
+    LightmapBlock b;
+    b.width = w;
+    b.height = h;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) b.texels.push_back({uint8_t(seed + x * 10), uint8_t(seed + y * 10), uint8_t(seed)});
+    b.sortKey = std::move(key);
+    return b;
+}
+
+LightmapBlock uniformBlock(int w, int h, Rgb8 c) {
+    LightmapBlock b;
+    b.width = w;
+    b.height = h;
+    b.texels.assign(size_t(w) * h, c);
+    return b;
+}
+
+PackOptions slow(int pageSize) {
+    PackOptions o;
+    o.pageSize = pageSize;
+    o.fastAllocate = false;
+    return o;
+}
+
+TEST(LightmapPack, SolidBlocks) {
+    EXPECT_TRUE(blockIsSolid(uniformBlock(3, 3, {10, 20, 30})));
+    LightmapBlock b = uniformBlock(3, 3, {10, 20, 30});
+    b.texels[4] = {10, 20, 31};
+    EXPECT_FALSE(blockIsSolid(b));
+    b.used.assign(9, 1);
+    b.used[4] = 0;  // the odd texel is unused
+    EXPECT_TRUE(blockIsSolid(b));
+    EXPECT_TRUE(blockIsSolid(gradient(2, 2, 0)));  // at most 2 x 2 is always solid
+    EXPECT_FALSE(blockIsSolid(gradient(3, 2, 0)));
+}
+
+TEST(LightmapPack, MatchingFollowsQ3map2Tolerances) {
+    const LightmapBlock a = gradient(3, 3, 20);
+    LightmapBlock b = a;
+    EXPECT_TRUE(blocksMatch(a, b));
+    b.texels[8][0] += 3;  // last texel: mean difference 3/768/9 is within tolerance
+    EXPECT_TRUE(blocksMatch(a, b));
+    b = a;
+    b.texels[0][0] += 3;  // first texel: 3/768 already exceeds 0.0025 at that point
+    EXPECT_FALSE(blocksMatch(a, b));
+    b = a;
+    b.texels[8][1] += 4;  // any channel off by more than 3
+    EXPECT_FALSE(blocksMatch(a, b));
+    EXPECT_FALSE(blocksMatch(a, gradient(3, 4, 20)));
+    EXPECT_TRUE(blocksMatch(uniformBlock(5, 5, {1, 2, 3}), uniformBlock(2, 2, {1, 2, 3})));  // solids by colour
+    EXPECT_FALSE(blocksMatch(uniformBlock(5, 5, {1, 2, 3}), uniformBlock(5, 5, {1, 2, 4})));
+}
+
+TEST(LightmapPack, FirstFitInSortedOrder) {
+    std::vector<LightmapBlock> blocks = {gradient(4, 4, 0, "b"), gradient(4, 4, 100, "a"), uniformBlock(3, 3, {7, 8, 9})};
+    blocks[2].sortKey = "c";
+    const PackedLightmaps p = packLightmaps(blocks, slow(8));
+    ASSERT_EQ(p.pages.size(), 1u);
+    EXPECT_EQ(p.placements[1].x, 0);  // "a" goes first
+    EXPECT_EQ(p.placements[1].y, 0);
+    EXPECT_EQ(p.placements[0].x, 4);
+    EXPECT_EQ(p.placements[0].y, 0);
+    // The solid block takes one texel at the first position where its full size would fit.
+    EXPECT_TRUE(p.placements[2].solid);
+    EXPECT_EQ(p.placements[2].x, 0);
+    EXPECT_EQ(p.placements[2].y, 4);
+    EXPECT_EQ(p.placements[2].width, 1);
+    const auto& page = p.pages[0];
+    auto texel = [&](int x, int y) { return Rgb8{page[(y * 8 + x) * 3], page[(y * 8 + x) * 3 + 1], page[(y * 8 + x) * 3 + 2]}; };
+    EXPECT_EQ(texel(0, 4), (Rgb8{7, 8, 9}));
+    EXPECT_EQ(texel(1, 4), (Rgb8{0, 0, 0}));
+    EXPECT_EQ(texel(5, 2), (Rgb8{10, 20, 0}));    // block "b" texel (1, 2)
+    EXPECT_EQ(texel(3, 3), (Rgb8{130, 130, 100}));  // block "a" texel (3, 3)
+    // Larger blocks first within a shader.
+    std::vector<LightmapBlock> sized = {gradient(2, 3, 0), gradient(5, 5, 0), gradient(3, 3, 50)};
+    const PackedLightmaps q = packLightmaps(sized, slow(8));
+    EXPECT_EQ(q.placements[1].x, 0);
+    EXPECT_EQ(q.placements[2].x, 5);
+    EXPECT_EQ(q.placements[0].y, 3);
+}
+
+TEST(LightmapPack, CollapseAndNoCollapse) {
+    std::vector<LightmapBlock> blocks = {gradient(4, 4, 0), gradient(4, 4, 0), uniformBlock(4, 4, {5, 5, 5})};
+    const PackedLightmaps p = packLightmaps(blocks, slow(8));
+    EXPECT_EQ(p.placements[1].twinOf, 0);
+    EXPECT_EQ(p.placements[1].page, p.placements[0].page);
+    EXPECT_EQ(p.placements[1].x, p.placements[0].x);
+    EXPECT_TRUE(p.placements[2].solid);
+    PackOptions no = slow(8);
+    no.collapse = false;
+    const PackedLightmaps q = packLightmaps(blocks, no);
+    EXPECT_EQ(q.placements[1].twinOf, -1);
+    EXPECT_NE(q.placements[1].x + 8 * q.placements[1].y, q.placements[0].x + 8 * q.placements[0].y);
+    EXPECT_FALSE(q.placements[2].solid);
+    EXPECT_EQ(q.placements[2].width, 4);
+    EXPECT_EQ(q.pages.size(), 1u);
+}
+
+TEST(LightmapPack, UnusedTexelsMayOverlap) {
+    LightmapBlock big = gradient(8, 8, 0);
+    big.used.assign(64, 0);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) big.used[size_t(y) * 8 + x] = 1;
+    std::vector<LightmapBlock> blocks = {big, gradient(4, 4, 9)};
+    const PackedLightmaps p = packLightmaps(blocks, slow(8));
+    EXPECT_EQ(p.pages.size(), 1u);
+    EXPECT_EQ(p.placements[1].x, 4);
+    EXPECT_EQ(p.placements[1].y, 0);
+}
+
+TEST(LightmapPack, NewPagesAndFastAllocation) {
+    std::vector<LightmapBlock> two = {gradient(8, 8, 0), gradient(8, 8, 1)};
+    EXPECT_EQ(packLightmaps(two, slow(8)).pages.size(), 2u);
+    EXPECT_EQ(packLightmaps(two, slow(8)).placements[1].page, 1);
+
+    // 8x7 leaves 8 free texels; after a 3x1 strip 5 remain (< 10% of 64): fast allocation skips
+    // the page, the careful one still fits the next strip.
+    std::vector<LightmapBlock> strips = {gradient(8, 7, 0, "a"), gradient(3, 1, 1, "b"), gradient(3, 1, 2, "c")};
+    PackOptions fast;
+    fast.pageSize = 8;
+    const PackedLightmaps f = packLightmaps(strips, fast);
+    EXPECT_EQ(f.placements[1].page, 0);
+    EXPECT_EQ(f.placements[1].y, 7);
+    EXPECT_EQ(f.placements[2].page, 1);
+    const PackedLightmaps s = packLightmaps(strips, slow(8));
+    EXPECT_EQ(s.placements[2].page, 0);
+    EXPECT_EQ(s.placements[2].x, 3);
+    EXPECT_EQ(s.placements[2].y, 7);
+}
+
+TEST(LightmapPack, BadInput) {
+    std::vector<LightmapBlock> tooBig = {gradient(9, 2, 0)};
+    EXPECT_THROW(packLightmaps(tooBig, slow(8)), CompileError);
+    EXPECT_THROW(packLightmaps({}, slow(12)), CompileError);
+    LightmapBlock broken = gradient(3, 3, 0);
+    broken.texels.pop_back();
+    EXPECT_THROW(packLightmaps(std::vector<LightmapBlock>{broken}, slow(8)), CompileError);
+}
+
+bsp::Bsp twoSurfaceBsp() {
+    bsp::Bsp b;
+    b.surfaces.resize(3);
+    for (int s = 0; s < 3; ++s) {
+        b.surfaces[size_t(s)].firstVert = s * 3;
+        b.surfaces[size_t(s)].numVerts = 3;
+        b.surfaces[size_t(s)].lightmapNum = -1;
+    }
+    b.drawVerts.resize(9);
+    return b;
+}
+
+TEST(LightmapPack, ApplyRewritesSurfacesAndVertices) {
+    std::vector<LightmapBlock> blocks = {gradient(4, 4, 0), uniformBlock(3, 3, {1, 1, 1})};
+    blocks[0].surfaces = {0, 2};
+    blocks[0].vertexCoords = {{{0.5f, 0.5f}, {3.5f, 0.5f}, {3.5f, 3.5f}}, {{1.0f, 1.0f}, {2.0f, 1.0f}, {2.0f, 4.0f}}};
+    blocks[1].surfaces = {1};
+    blocks[1].vertexCoords = {{{0.5f, 0.5f}, {2.5f, 0.5f}, {2.5f, 2.5f}}};
+    PackOptions o = slow(8);
+    o.gamePageSize = 8;
+    bsp::Bsp b = twoSurfaceBsp();
+    const PackedLightmaps p = packLightmaps(blocks, o);
+    applyPackedLightmaps(b, blocks, p);
+    EXPECT_EQ(b.surfaces[0].lightmapNum, 0);
+    EXPECT_EQ(b.surfaces[0].lightmapWidth, 4);
+    EXPECT_EQ(b.surfaces[2].lightmapX, p.placements[0].x);
+    EXPECT_FLOAT_EQ(b.drawVerts[1].lightmap[0], (float(p.placements[0].x) + 3.5f) / 8.0f);
+    EXPECT_FLOAT_EQ(b.drawVerts[8].lightmap[1], (float(p.placements[0].y) + 4.0f) / 8.0f);
+    // Solid: every vertex on the texel centre.
+    EXPECT_EQ(b.surfaces[1].lightmapWidth, 1);
+    EXPECT_FLOAT_EQ(b.drawVerts[4].lightmap[0], (float(p.placements[1].x) + 0.5f) / 8.0f);
+    EXPECT_FLOAT_EQ(b.drawVerts[5].lightmap[1], (float(p.placements[1].y) + 0.5f) / 8.0f);
+    EXPECT_EQ(b.lightmaps.size(), 8u * 8u * 3u);
+
+    // A page size other than the game's without -external: custom shaders needed, no lump 14.
+    PackOptions custom = slow(8);
+    bsp::Bsp c = twoSurfaceBsp();
+    applyPackedLightmaps(c, blocks, packLightmaps(blocks, custom));
+    EXPECT_EQ(c.surfaces[0].lightmapNum, bsp::kLightmapByVertex);
+    EXPECT_TRUE(c.lightmaps.empty());
+    EXPECT_TRUE(packLightmaps(blocks, custom).needsExternalFiles());
+    EXPECT_FALSE(p.needsExternalFiles());
+    // -external: page numbers, no lump 14.
+    PackOptions ext = slow(8);
+    ext.external = true;
+    bsp::Bsp e = twoSurfaceBsp();
+    applyPackedLightmaps(e, blocks, packLightmaps(blocks, ext));
+    EXPECT_EQ(e.surfaces[0].lightmapNum, 0);
+    EXPECT_TRUE(e.lightmaps.empty());
+
+    blocks[0].vertexCoords[1].pop_back();
+    EXPECT_THROW(applyPackedLightmaps(b, blocks, p), CompileError);
+}
+
+TEST(LightmapPack, ExternalTgaPages) {
+    const std::vector<uint8_t> rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 9, 9, 9};
+    const auto tga = encodeLightmapTga(rgb, 2, 2);
+    ASSERT_EQ(tga.size(), 18u + 12u);
+    EXPECT_EQ(tga[2], 2);   // uncompressed true colour
+    EXPECT_EQ(tga[16], 24);
+    const Image back = decodeTga(tga, "lm");
+    ASSERT_EQ(back.width, 2);
+    EXPECT_EQ(back.texel(0, 0)[0], 255);  // top-left stays top-left
+    EXPECT_EQ(back.texel(1, 0)[1], 255);
+    EXPECT_EQ(back.texel(0, 1)[2], 255);
+    EXPECT_EQ(back.texel(1, 1)[0], 9);
+
+    std::vector<LightmapBlock> blocks = {gradient(8, 8, 0), gradient(8, 8, 50)};
+    PackOptions ext = slow(8);
+    ext.external = true;
+    const PackedLightmaps p = packLightmaps(blocks, ext);
+    const auto dir = test::tempDir() / "maps" / "test";
+    std::filesystem::create_directories(dir);
+    writeFileAtomic(dir / "lm_0002.tga", std::string("stale"));
+    writeFileAtomic(dir / "lm_0003.tga", std::string("stale"));
+    writeFileAtomic(dir / "lm_0005.tga", std::string("kept: not contiguous"));
+    const auto written = writeExternalLightmaps(p, dir);
+    ASSERT_EQ(written.size(), 2u);
+    EXPECT_EQ(written[1].filename(), "lm_0001.tga");
+    EXPECT_EQ(externalLightmapName(12), "lm_0012.tga");
+    EXPECT_FALSE(std::filesystem::exists(dir / "lm_0002.tga"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "lm_0003.tga"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "lm_0005.tga"));
+    const Image page1 = decodeTga(readFileBytes(dir / "lm_0001.tga"), "lm_0001");
+    EXPECT_EQ(page1.width, 8);
+    EXPECT_EQ(page1.texel(3, 2)[0], 50 + 30);
+    EXPECT_EQ(page1.texel(3, 2)[1], 50 + 20);
+}
+
+}  // namespace
+}  // namespace q3::light
