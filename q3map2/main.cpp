@@ -6,12 +6,8 @@
 #include "light_options.h"
 #include "log.h"
 
-#if Q3MAP_HAVE_LIGHT_STAGE
-#include "light_stage.h"
-#endif
-#if Q3MAP_HAVE_JSON_STAGE
 #include "json_stage.h"
-#endif
+#include "light_stage.h"
 
 #include <tbb/global_control.h>
 
@@ -25,24 +21,6 @@ namespace {
 
 using q3::cli::UsageError;
 
-#if Q3MAP_HAVE_JSON_STAGE
-const q3::cli::OptionTable<q3::json::JsonOptions>& jsonOptionTable() {
-    using O = q3::json::JsonOptions;
-    using q3::cli::flag;
-    using q3::cli::kImplemented;
-    static const q3::cli::OptionTable<O> table = {
-        flag<O>({"-unpack"}, &O::unpack, "Unpack the BSP to JSON files", kImplemented),
-        flag<O>({"-pack"}, &O::pack, "Pack the JSON files back to a BSP", kImplemented),
-        flag<O>({"-useflagnames"}, &O::useFlagNames,
-                "While packing, take surface and content flag values from their names in shaders.json",
-                kImplemented),
-        flag<O>({"-skipflags"}, &O::skipFlags, "With -useflagnames, skip unknown flag names", kImplemented),
-        flag<O>({"-lightmapimages"}, &O::lightmapImages, "Lightmap pages as PNG files instead of LightBytes.json",
-                kImplemented),
-    };
-    return table;
-}
-#endif
 
 // q3map2's stage list, with the stages of this build filled in.
 std::vector<q3::cli::StageDescription> stageList() {
@@ -52,14 +30,11 @@ std::vector<q3::cli::StageDescription> stageList() {
             s.available = true;
             s.options = q3::cli::describe(q3::info::infoOptionTable());
         } else if (s.name == "-light") {
-            // The table is listed even before the stage runs, so -help light documents it.
-            s.available = Q3MAP_HAVE_LIGHT_STAGE != 0;
+            s.available = true;
             s.options = q3::cli::describe(q3::light::lightOptionTable());
         } else if (s.name == "-json") {
-#if Q3MAP_HAVE_JSON_STAGE
             s.available = true;
-            s.options = q3::cli::describe(jsonOptionTable());
-#endif
+            s.options = q3::cli::describe(q3::json::jsonOptionTable());
         }
     }
     return stages;
@@ -93,18 +68,14 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);
         return q3::info::runInfoStage(options, common, log);
     }
-#if Q3MAP_HAVE_LIGHT_STAGE
     if (line.stage == "-light") {
         auto options = parseStageOptions(q3::light::lightOptionTable(), line, stages);
         return q3::light::runLightStage(options, common, log);
     }
-#endif
-#if Q3MAP_HAVE_JSON_STAGE
     if (line.stage == "-json") {
-        auto options = parseStageOptions(jsonOptionTable(), line, stages);
+        auto options = parseStageOptions(q3::json::jsonOptionTable(), line, stages);
         return q3::json::runJsonStage(options, common, log);
     }
-#endif
     // splitCommandLine refuses unavailable stages, so this is only reached if the list and the
     // dispatch above disagree.
     throw UsageError(line.stage + " is a q3map2 stage this build does not implement yet");

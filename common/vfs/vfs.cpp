@@ -124,18 +124,25 @@ struct Vfs::Impl {
         if (!fs::is_directory(folder, ec)) return;
         sources.push_back({VfsSource::Kind::Folder, folder, game});
         archives.emplace_back();
-        std::vector<fs::path> pk3s;
+        // Archives and .pk3dir folders (unpacked archives) share one name order; later names win,
+        // so the search order is descending, ties broken by exact spelling.
+        std::vector<fs::path> packages;
         for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
             std::error_code typeError;
-            if (lowerCopy(it->path().extension().string()) == ".pk3" && it->is_regular_file(typeError))
-                pk3s.push_back(it->path());
+            const std::string ext = lowerCopy(it->path().extension().string());
+            if ((ext == ".pk3" && it->is_regular_file(typeError)) || (ext == ".pk3dir" && it->is_directory(typeError)))
+                packages.push_back(it->path());
         }
-        // Later names win, so the search order is descending; ties broken by exact spelling.
-        std::sort(pk3s.begin(), pk3s.end(), [](const fs::path& a, const fs::path& b) {
+        std::sort(packages.begin(), packages.end(), [](const fs::path& a, const fs::path& b) {
             std::string la = lowerCopy(a.filename().string()), lb = lowerCopy(b.filename().string());
             return la != lb ? la > lb : a.filename().string() > b.filename().string();
         });
-        for (const fs::path& pk3 : pk3s) {
+        for (const fs::path& pk3 : packages) {
+            if (lowerCopy(pk3.extension().string()) == ".pk3dir") {
+                sources.push_back({VfsSource::Kind::Folder, pk3, game});
+                archives.emplace_back();
+                continue;
+            }
             std::string error;
             auto archive = Pk3Archive::open(pk3, error);
             if (!archive) {

@@ -5,7 +5,8 @@
 //   for each game folder, mod folders (-fs_game, last given first) above the base game folder;
 //   inside one game folder, the home path above the base paths (the first -fs_basepath above later
 //   ones); inside one <root>/<game> folder, loose files above archives, and archives later in
-//   case-insensitive name order above earlier ones.
+//   case-insensitive name order above earlier ones. A "<name>.pk3dir" folder is an unpacked
+//   archive and takes its place in that name order.
 // Look-ups are case-insensitive (inside archives and in loose folders) and use '/' separators.
 //
 // A .pk3 that cannot be opened as a zip (corrupt, truncated, not a zip) is skipped with a warning
@@ -60,7 +61,7 @@ std::optional<DetectedGamePaths> detectGamePaths(const std::filesystem::path& ma
 struct VfsSource {
     enum class Kind { Folder, Archive };
     Kind kind = Kind::Folder;
-    std::filesystem::path location;  // the <root>/<game> folder or the .pk3 file
+    std::filesystem::path location;  // the <root>/<game> folder, a .pk3dir folder or the .pk3 file
     std::string gameDir;             // "baseq3", "baseoa", a mod name
 };
 

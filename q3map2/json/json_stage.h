@@ -5,6 +5,7 @@
 #include "bspfile.h"
 #include "common_options.h"
 #include "log.h"
+#include "option_table.h"
 
 #include <filesystem>
 
@@ -17,6 +18,9 @@ struct JsonOptions {
     bool skipFlags = false;      // -skipflags: with -useflagnames, ignore unknown names
     bool lightmapImages = false; // -lightmapimages: lightmap pages as PNG files, not LightBytes.json
 };
+
+// The -json stage's options, for the parser and -help.
+const cli::OptionTable<JsonOptions>& jsonOptionTable();
 
 // Writes the folder `folder` (normally maps/NAME/ beside the BSP). Every file is written atomically.
 void unpackBsp(const bsp::Bsp& bsp, const std::filesystem::path& folder, const JsonOptions& options, Log& log);

@@ -45,6 +45,8 @@ Vec3 GridLayout::pointOrigin(int index) const {
     return {mins.x + float(c[0]) * size.x, mins.y + float(c[1]) * size.y, mins.z + float(c[2]) * size.z};
 }
 
+constexpr float kGridWorldLimit = float(1 << 20);
+
 GridLayout computeGridLayout(Vec3 requestedSize, Vec3 worldMins, Vec3 worldMaxs) {
     GridLayout layout;
     layout.requestedSize = requestedSize;
@@ -55,10 +57,14 @@ GridLayout computeGridLayout(Vec3 requestedSize, Vec3 worldMins, Vec3 worldMaxs)
         long long points = 1;
         for (int i = 0; i < 3; ++i) {
             const float g = layout.size[i];
-            layout.mins[i] = g * std::ceil(worldMins[i] / g);
-            const float max = g * std::floor(worldMaxs[i] / g);
-            layout.bounds[i] = int((max - layout.mins[i]) / g + 1.0f);
-            points *= std::max(layout.bounds[i], 0);
+            // Far beyond any engine's world size; keeps the counts below in range for absurd input.
+            const float lo = std::clamp(worldMins[i], -kGridWorldLimit, kGridWorldLimit);
+            const float hi = std::clamp(worldMaxs[i], -kGridWorldLimit, kGridWorldLimit);
+            layout.mins[i] = g * std::ceil(lo / g);
+            const float max = g * std::floor(hi / g);
+            // An empty world (maxs below mins) gives no points rather than a negative count.
+            layout.bounds[i] = std::max(0, int((max - layout.mins[i]) / g + 1.0f));
+            points *= layout.bounds[i];
         }
         if (points <= kMaxGridPoints) break;
         layout.size[axis] += kGridGrowStep;

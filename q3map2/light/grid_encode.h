@@ -44,7 +44,7 @@ struct GridLayout {
 
 // q3map2 SetupGrid: floor each axis (min 8), mins = g*ceil(worldMins/g), maxs = g*floor(worldMaxs/g),
 // bounds = (maxs-mins)/g + 1 (float arithmetic as the engine does it), growing while the point count
-// exceeds kMaxGridPoints.
+// exceeds kMaxGridPoints. World coordinates are clamped to +-2^20 (no engine goes near that).
 GridLayout computeGridLayout(Vec3 requestedSize, Vec3 worldMins, Vec3 worldMaxs);
 // Same from BSP model 0 (the world).
 GridLayout computeGridLayout(Vec3 requestedSize, const bsp::Bsp& bsp);

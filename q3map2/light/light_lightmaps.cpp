@@ -121,6 +121,34 @@ struct LuxelSampler {
     }
 };
 
+// Whether a light can reach any luxel of a raw lightmap: inside its envelope, in front of a planar
+// one-sided surface, and in the PVS of at least one luxel's cluster.
+struct LightmapReach {
+    Bounds bounds;
+    std::vector<int> clusters;  // sorted, unique; empty = unknown
+    bool planar = false;
+    bool twoSided = false;
+    Vec3 planeNormal;
+    float planeDist = 0;
+};
+
+bool inFrontOfPlane(const Light& light, const LightmapReach& r) {
+    if (!r.planar || r.twoSided || light.type == LightType::Sun) return true;
+    if (light.type == LightType::Area) {
+        for (const Vec3& p : light.winding)
+            if (dot(p, r.planeNormal) - r.planeDist > -1.0f) return true;
+        return dot(light.origin, r.planeNormal) - r.planeDist > -1.0f;
+    }
+    return dot(light.origin, r.planeNormal) - r.planeDist >= -1.0f;
+}
+
+bool visibleFromLightmap(const Light& light, const LightmapReach& r, const BspTree* tree) {
+    if (!tree || light.type == LightType::Sun || light.cluster < 0 || r.clusters.empty()) return true;
+    for (int c : r.clusters)
+        if (c < 0 || tree->clusterVisible(c, light.cluster)) return true;
+    return false;
+}
+
 bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
     if (light.type == LightType::Sun) return true;
     const float envelope = lightEnvelope(light, forceFast);
@@ -177,11 +205,25 @@ RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& env, int s
             }
         }
 
+    LightmapReach reach;
+    reach.bounds = bounds;
+    reach.twoSided = shader.twoSided;
+    reach.planar = raw.planar && surface.surfaceType == bsp::MST_PLANAR;
+    if (reach.planar) {
+        reach.planeNormal = raw.planeNormal;
+        reach.planeDist = raw.planeDist + dot(offset, raw.planeNormal);
+    }
+    for (const auto& p : points)
+        if (p) reach.clusters.push_back(p->cluster);
+    std::sort(reach.clusters.begin(), reach.clusters.end());
+    reach.clusters.erase(std::unique(reach.clusters.begin(), reach.clusters.end()), reach.clusters.end());
+
     const int maxLevel = std::max(0, o.lightSamples - 1);
     LuxelImage single(w, h);
     single.state = total.state;
     for (const Light& light : ctx.lights) {
         if (bounds.empty() || !lightReachesBounds(light, bounds, env.settings.forceFast)) continue;
+        if (!inFrontOfPlane(light, reach) || !visibleFromLightmap(light, reach, env.tree)) continue;
         bool any = false;
         for (size_t i = 0; i < points.size(); ++i) {
             single.color[i] = Vec3{};

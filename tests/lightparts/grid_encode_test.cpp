@@ -38,6 +38,12 @@ TEST(GridEncode, LayoutFromBounds) {
     EXPECT_EQ(g.pointOrigin(6 * 2 + 6 + 5), (Vec3{-64 + 5 * 64, 64, 256}));
 }
 
+TEST(GridEncode, EmptyWorldHasNoPoints) {
+    GridLayout g = computeGridLayout({64, 64, 128}, {10, 10, 10}, {-10, -10, -10});
+    EXPECT_EQ(g.numPoints(), 0);
+    EXPECT_EQ(computeGridLayout({64, 64, 128}, Bounds{}.mins, Bounds{}.maxs).numPoints(), 0);
+}
+
 TEST(GridEncode, SizeIsFlooredAndAtLeastEight) {
     GridLayout g = computeGridLayout({4, 33.7f, 64}, {0, 0, 0}, {64, 64, 64});
     EXPECT_EQ(g.size, (Vec3{8, 33, 64}));

@@ -280,5 +280,35 @@ TEST(LightmapRealData, ProjectionAxesMatchShippedLightmapCoordinates) {
     RecordProperty("on_texel_corner", onTexelCorner);
 }
 
+// Curved patches: q3map2 spreads the control points evenly over w - 1 luxels, so the shipped
+// coordinates give its lightmap size; ours (mesh lengths at the default sample size) must agree
+// (all 460 non-solid curved patches of these maps did when this was written).
+TEST(LightmapRealData, CurvedPatchSizesMatchShippedLightmaps) {
+    int checked = 0, matched = 0;
+    for (const std::string name : {"oacmpdm1", "oacmpdm3"}) {
+        const bsp::Bsp b = bsp::readBsp(test::realBsp(name));
+        for (size_t si = 0; si < b.surfaces.size(); ++si) {
+            const bsp::Surface& surface = b.surfaces[si];
+            if (surface.surfaceType != bsp::MST_PATCH || surface.lightmapNum < 0) continue;
+            SurfaceGeometry g = surfaceGeometry(b, int(si));
+            g.mesh = tessellatedPatch(b, surface);
+            const auto lm = layoutSurfaceLightmap(g, {}, {});
+            ASSERT_TRUE(lm.has_value());
+            if (lm->axisNum >= 0) continue;  // flat patch
+            const bsp::DrawVert* v = &b.drawVerts[size_t(surface.firstVert)];
+            const float shippedW = (v[surface.patchWidth - 1].lightmap[0] - v[0].lightmap[0]) * 128.0f + 1.0f;
+            const float shippedH =
+                (v[(surface.patchHeight - 1) * surface.patchWidth].lightmap[1] - v[0].lightmap[1]) * 128.0f + 1.0f;
+            if (std::fabs(shippedW - 1.0f) < 1e-3f && std::fabs(shippedH - 1.0f) < 1e-3f) continue;  // solid
+            ++checked;
+            matched += std::fabs(shippedW - float(lm->width)) < 0.02f && std::fabs(shippedH - float(lm->height)) < 0.02f;
+        }
+    }
+    EXPECT_GT(checked, 100);
+    EXPECT_EQ(matched, checked);
+    RecordProperty("checked", checked);
+    RecordProperty("matched", matched);
+}
+
 }  // namespace
 }  // namespace q3::light

@@ -67,6 +67,20 @@ TEST(VfsOrder, LaterPk3NamesWinAndLooseFilesWinOverPk3s) {
     EXPECT_EQ(std::string(all[2].begin(), all[2].end()), "loose");
 }
 
+TEST(VfsOrder, Pk3dirFoldersTakeTheirPlaceInNameOrder) {
+    const fs::path base = test::tempDir();
+    writeZip(base / "baseq3/pak0.pk3", {{"a.txt", "pak0"}, {"b.txt", "pak0"}, {"c.txt", "pak0"}});
+    writeLoose(base / "baseq3/pak0b.pk3dir/a.txt", "pak0b dir");
+    writeLoose(base / "baseq3/pak0b.pk3dir/B.TXT", "pak0b dir");
+    writeZip(base / "baseq3/pak1.pk3", {{"a.txt", "pak1"}});
+    Captured capture;
+    Vfs vfs(optionsFor(base), capture.log);
+    EXPECT_EQ(text(vfs.read("a.txt")), "pak1");
+    EXPECT_EQ(text(vfs.read("b.txt")), "pak0b dir");
+    EXPECT_EQ(text(vfs.read("c.txt")), "pak0");
+    EXPECT_EQ(vfs.list("", "txt"), (std::vector<std::string>{"a.txt", "B.TXT", "c.txt"}));
+}
+
 TEST(VfsOrder, ModOverBaseAndHomeOverBase) {
     const fs::path base = test::tempDir() / "base";
     const fs::path home = base.parent_path() / "home";
