@@ -1,6 +1,8 @@
 // The q3map2 executable: parses the command line, applies the common options and runs one stage.
 // Exit codes: 0 success, 1 compile failure ("ERROR: <message>"), 2 usage error.
 #include "command_line.h"
+#include "feedback_log.h"
+#include "run_stats.h"
 #include "common_option_table.h"
 #include "info_stage.h"
 #include "light_options.h"
@@ -11,6 +13,7 @@
 
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -49,6 +52,9 @@ Options parseStageOptions(const q3::cli::OptionTable<Options>& table, const q3::
     return options;
 }
 
+int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log);
+
 int run(const std::vector<std::string>& args, q3::Log& log) {
     std::vector<q3::cli::StageDescription> stages = stageList();
     q3::CommonOptions common;
@@ -59,10 +65,32 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
         return 0;
     }
     log.setVerbose(common.verbose);
+    std::shared_ptr<q3::FeedbackStream> feedback;
+    if (!common.connect.empty()) feedback = q3::connectNetRadiant(common.connect, log);
     std::optional<tbb::global_control> threads;
     if (common.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(common.threads));
 
+    auto start = std::chrono::steady_clock::now();
+    int status = runStage(line, common, stages, log);
+    if (status == 0 && common.warningsAsErrors && log.warningCount() > 0) {
+        log.error(std::to_string(log.warningCount()) + " warning(s) with -werror");
+        status = 1;
+    }
+    if (!common.statsPath.empty()) {
+        q3::RunStats stats;
+        stats.stage = line.stage.substr(1);
+        stats.map = common.mapPath.string();
+        stats.threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+        stats.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats.warnings = log.warningCount();
+        q3::writeRunStats(common.statsPath, stats);
+    }
+    return status;
+}
+
+int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log) {
     // Each stage checks all of its options before any work starts.
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);

@@ -37,7 +37,7 @@ OptionTable<CommonOptions> buildCommonTable() {
     using O = CommonOptions;
     OptionTable<O> t;
     t.push_back(custom<O>({"-connect"}, {{ArgKind::Text, "address", {}}}, 1, "none",
-                          "Talk to a NetRadiant instance using its XML based protocol", kNotImplemented,
+                          "Talk to a NetRadiant instance using its XML based protocol", kImplemented,
                           [](O& o, std::span<const ArgValue> v) { o.connect = v[0].text; }));
     t.push_back(flag<O>({"-force"}, &O::force, "Allow reading some broken/unsupported BSP files", kImplemented));
     t.push_back(custom<O>({"-fs_basepath"}, {{ArgKind::Text, "path", {}}}, 1, "none",
@@ -76,7 +76,13 @@ OptionTable<CommonOptions> buildCommonTable() {
     t.push_back(custom<O>({"-threads"}, {{ArgKind::Int, "N", Range::between(1, 1024)}}, 1, "one per core",
                           "Number of threads to use", kImplemented,
                           [](O& o, std::span<const ArgValue> v) { o.threads = static_cast<int>(v[0].number); }));
+    t.push_back(custom<O>({"-stats"}, {{ArgKind::Text, "FILE.json", {}}}, 1, "none",
+                          "Write a machine-readable summary (phase times, rays, luxels, warnings, grid sizes; "
+                          "docs/stats-schema.json)",
+                          kImplemented, [](O& o, std::span<const ArgValue> v) { o.statsPath = v[0].text; }));
     t.push_back(flag<O>({"-v"}, &O::verbose, "Verbose mode", kImplemented));
+    t.push_back(flag<O>({"-werror"}, &O::warningsAsErrors, "Treat warnings as errors: a run that warned exits with 1",
+                        kImplemented));
     return t;
 }
 

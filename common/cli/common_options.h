@@ -16,6 +16,8 @@ struct CommonOptions {
     std::string homePath;                  // -fs_homepath
     std::string connect;                   // -connect host:port
     bool force = false;                    // -force
+    bool warningsAsErrors = false;         // -werror: a run with warnings fails (exit 1)
+    std::filesystem::path statsPath;       // -stats FILE.json: machine-readable summary
     std::filesystem::path mapPath;         // the .bsp the map argument names (x.map and x give x.bsp)
     std::string commandLine;               // the stage switch and its options, for _q3map2_cmdline
 };

@@ -85,6 +85,7 @@ struct FeedbackStream::Impl {
 std::unique_ptr<FeedbackStream> FeedbackStream::open(const FeedbackAddress& address,
                                                      FeedbackStreamOptions options,
                                                      std::string* error) {
+    xmlInitParser();  // idempotent; makes libxml2's global setup happen before any thread uses it
     auto socket = FeedbackSocket::connect(address, options.connectTimeout, options.sendTimeout, error);
     if (!socket) return nullptr;
     auto impl = std::make_unique<Impl>(std::move(*socket));

@@ -188,9 +188,21 @@ Vfs::Vfs(const VfsOptions& options, Log& log) : impl_(std::make_unique<Impl>()) 
     }
     for (const std::string& mod : options.gameDirs) addMod(mod);
 
-    std::vector<fs::path> roots;  // highest priority first
-    if (!options.homePath.empty()) roots.push_back(options.homePath);
-    for (const fs::path& base : impl_->basePaths) roots.push_back(base);
+    std::vector<fs::path> roots;  // highest priority first; a folder given twice is searched once
+    auto sameFolder = [](const fs::path& a, const fs::path& b) {
+        auto canonicalForm = [](const fs::path& p) {
+            fs::path normal = p.lexically_normal();
+            return normal.has_filename() ? normal : normal.parent_path();  // drop a trailing '/'
+        };
+        return canonicalForm(a) == canonicalForm(b);
+    };
+    auto addRoot = [&](const fs::path& root) {
+        for (const fs::path& known : roots)
+            if (sameFolder(known, root)) return;
+        roots.push_back(root);
+    };
+    if (!options.homePath.empty()) addRoot(options.homePath);
+    for (const fs::path& base : impl_->basePaths) addRoot(base);
 
     std::vector<std::string> games = {baseGame};
     games.insert(games.end(), mods.begin(), mods.end());

@@ -2,15 +2,15 @@
 // order. Built once from options; every query is const and safe to call from worker threads.
 //
 // Priority, highest first:
-//   for each game folder, mod folders (-fs_game, last given first) above the base game folder;
-//   inside one game folder, the home path above the base paths (the first -fs_basepath above later
-//   ones); inside one <root>/<game> folder, loose files above archives, and archives later in
-//   case-insensitive name order above earlier ones. A "<name>.pk3dir" folder is an unpacked
-//   archive and takes its place in that name order.
+//   mod folders (-fs_game, the last given first) above the base game folder; within one game, the
+//   home path above the base paths (the first -fs_basepath above later ones; a folder given twice
+//   is searched once); inside one <root>/<game> folder, loose files above archives, and archives
+//   later in case-insensitive name order above earlier ones. A "<name>.pk3dir" folder is an
+//   unpacked archive and takes its place in that name order.
 // Look-ups are case-insensitive (inside archives and in loose folders) and use '/' separators.
 //
 // A .pk3 that cannot be opened as a zip (corrupt, truncated, not a zip) is skipped with a warning
-// naming it, as q3map2 does; its files are simply not there. An entry of a readable archive that
+// naming it (q3map2 skips such archives too); its files are simply not there. An entry of a readable archive that
 // fails to decompress is an error (FileError naming the archive and the entry).
 #pragma once
 

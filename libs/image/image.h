@@ -28,6 +28,7 @@ struct Image {
 
     bool empty() const { return width <= 0 || height <= 0; }
     const uint8_t* texel(int x, int y) const { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
+    uint8_t* texel(int x, int y) { return &rgba[(static_cast<size_t>(y) * width + x) * 4]; }
 };
 
 // Largest width or height any decoder accepts; larger headers are rejected as hostile.

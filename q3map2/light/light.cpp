@@ -1,7 +1,6 @@
 // The -light stage driver: load -> scene -> lights -> lightmaps -> vertex light -> legacy grid ->
 // write. Each step is a function of the LightContext (light_context.h); this file only sequences
 // them, times them and writes the result.
-#include <chrono>
 #include <cstring>
 
 #include "file_io.h"
@@ -9,6 +8,7 @@
 #include "light_stage.h"
 #include "light_text.h"
 #include "map_file.h"
+#include "phase_timer.h"
 #include "shader_info.h"
 #include "shader_loader.h"
 #include "vfs.h"
@@ -46,15 +46,6 @@ void injectCommandLine(bsp::Entity& worldspawn, const std::string& commandLine) 
     value = value.empty() ? line : value + "; " + line;
     worldspawn.set("_q3map2_cmdline", value);
     worldspawn.set("_q3map2_version", kVersion);
-}
-
-template <typename F>
-void timed(LightContext& ctx, Log& log, const char* name, F&& step) {
-    log.info(strCat("--- ", name, " ---"));
-    const auto start = std::chrono::steady_clock::now();
-    step();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ctx.stats.phases.push_back({name, seconds});
 }
 
 }  // namespace
@@ -102,28 +93,41 @@ void writeLitBsp(LightContext& ctx, Log& log) {
 int runLightStage(const LightOptions& options, const CommonOptions& common, Log& log) {
     LightContext ctx;
     ctx.options = options;
-    const auto start = std::chrono::steady_clock::now();
+    PhaseTimer timer;
+    auto phase = [&](const char* name) {
+        log.info(strCat("--- ", name, " ---"));
+        timer.begin(name);
+    };
 
-    timed(ctx, log, "load", [&] { loadLightInputs(ctx, common, log); });
-    timed(ctx, log, "scene", [&] {
-        buildSurfaceGeometry(ctx);
-        buildScene(ctx);
-        log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
-    });
-    timed(ctx, log, "lights", [&] { createLights(ctx, log); });
-    if (!options.noLightmaps) timed(ctx, log, "lightmaps", [&] { lightLightmaps(ctx, log); });
-    timed(ctx, log, "vertex light", [&] { lightVertexes(ctx, log); });
+    phase("load");
+    loadLightInputs(ctx, common, log);
+    phase("scene");
+    buildSurfaceGeometry(ctx);
+    buildScene(ctx);
+    log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
+    phase("lights");
+    createLights(ctx, log);
+    if (!options.noLightmaps) {
+        phase("lightmaps");
+        lightLightmaps(ctx, log);
+    }
+    phase("vertex light");
+    lightVertexes(ctx, log);
     // Bounce, dirt and deluxe maps plug in here; the SH grid (SetupGridSH / TraceGridSH) runs
     // beside the legacy grid from the same light list.
-    if (!options.noGrid) timed(ctx, log, "light grid", [&] { lightGrid(ctx, log); });
-    timed(ctx, log, "write", [&] { writeLitBsp(ctx, log); });
+    if (!options.noGrid) {
+        phase("light grid");
+        lightGrid(ctx, log);
+    }
+    phase("write");
+    writeLitBsp(ctx, log);
+    timer.end();
 
-    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log.info(strCat(ctx.stats.lightmaps, " raw lightmaps, ", ctx.stats.luxels, " luxels, ", ctx.stats.vertexes,
                     " vertexes, ", ctx.stats.gridPoints, " grid points, ",
                     ctx.scene ? ctx.scene->raysTraced() : 0, " rays traced"));
-    for (const PhaseStats& p : ctx.stats.phases) log.info(strCat(p.name, ": ", p.seconds, " s"));
-    log.info(strCat("light stage: ", total, " s, ", log.warningCount(), " warnings"));
+    timer.printSummary(log);
+    log.info(strCat(log.warningCount(), " warnings"));
     return 0;
 }
 

@@ -3,7 +3,6 @@
 // BSP it holds. Each step is a free function of this struct so that it can be run and tested alone.
 #pragma once
 
-#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -25,12 +24,6 @@
 
 namespace q3::light {
 
-// Time and work of one pipeline phase, for the closing summary.
-struct PhaseStats {
-    std::string name;
-    double seconds = 0;
-};
-
 struct LightStats {
     uint64_t luxels = 0;          // super luxels lit
     uint64_t vertexes = 0;        // draw vertices lit
@@ -38,7 +31,6 @@ struct LightStats {
     uint64_t gridPointsInSolid = 0;  // grid points left dark (no free point nearby)
     uint64_t lightmaps = 0;       // raw lightmaps
     uint64_t droppedStyledLight = 0;  // contributions of styles other than 0 (not stored in IBSP)
-    std::vector<PhaseStats> phases;
 };
 
 struct LightContext {

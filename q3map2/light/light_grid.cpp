@@ -9,6 +9,7 @@
 #include "grid_encode.h"
 #include "light_context.h"
 #include "light_text.h"
+#include "progress.h"
 
 namespace q3::light {
 namespace {
@@ -45,7 +46,11 @@ void lightGrid(LightContext& ctx, Log& log) {
 
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
+    log.info(strCat("light grid: ", layout.bounds[0], " x ", layout.bounds[1], " x ", layout.bounds[2], " = ",
+                    numPoints, " points"));
+    Progress progress = Progress::forConsole(log, points.size());
     auto body = [&](const tbb::blocked_range<int>& range) {
+        progress.advance(range.size());
         std::vector<LightContribution> contributions;
         for (int i = range.begin(); i != range.end(); ++i) {
             Vec3 origin = layout.pointOrigin(i);
@@ -76,10 +81,9 @@ void lightGrid(LightContext& ctx, Log& log) {
             points[static_cast<size_t>(i)] = encodeGridPoint(sample, gridOptions, ctx.color);
         }
     };
-    log.info(strCat("light grid: ", layout.bounds[0], " x ", layout.bounds[1], " x ", layout.bounds[2], " = ",
-                    numPoints, " points"));
     tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, std::max(0, numPoints), 64), body); });
+    progress.finish();
 
     ctx.bsp.lightGrid = std::move(points);
     ctx.stats.gridPoints = static_cast<uint64_t>(std::max(0, numPoints));

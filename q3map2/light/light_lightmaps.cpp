@@ -5,7 +5,6 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +14,7 @@
 #include "lightmap_layout.h"
 #include "lightmap_pack.h"
 #include "patch.h"
+#include "progress.h"
 
 namespace q3::light {
 namespace {
@@ -305,19 +305,16 @@ void lightLightmaps(LightContext& ctx, Log& log) {
 
     const LightingEnv env = surfaceLightingEnv(ctx);
     std::vector<RawResult> results(surfaces.size());
-    std::atomic<size_t> done{0};
-    const size_t step = std::max<size_t>(1, surfaces.size() / 10);
-    log.raw("lighting lightmaps: ");
+    Progress progress = Progress::forConsole(log, surfaces.size());
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t k = range.begin(); k != range.end(); ++k) {
             results[k] = lightOneSurface(ctx, env, surfaces[k], layoutOptions);
-            const size_t n = done.fetch_add(1) + 1;
-            if (n % step == 0) log.raw(strCat(n / step - 1, "..."));
+            progress.advance();
         }
     };
     tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 1), body); });
-    log.raw("\n");
+    progress.finish();
 
     // Blocks in surface order; vertex light of lightmapped surfaces from their own luxels.
     std::vector<LightmapBlock> blocks;

@@ -1,6 +1,7 @@
 // ShaderInfo -> LightingShader, with light images loaded once per name (see light_shaders.h).
 #include "light_shaders.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "image.h"
@@ -38,6 +39,22 @@ void applyBspFlags(LightingShader& s, const bsp::Shader& record) {
     s.fog = s.fog || (cont & q3::contents::Fog);
 }
 
+// The image of that name from the cache, loading it on first use; null when it does not exist.
+const LightImage* cachedImage(LightingShaderSet& set, const Vfs& vfs, const std::string& name, Log& log) {
+    auto it = set.images.find(name);
+    if (it != set.images.end()) return it->second.get();
+    std::unique_ptr<LightImage> loaded;
+    try {
+        if (std::optional<LoadedImage> li = loadImage(vfs, name))
+            loaded = std::make_unique<LightImage>(toLightImage(li->image));
+    } catch (const std::exception& e) {
+        log.warning(e.what());
+    }
+    const LightImage* image = loaded.get();
+    set.images.emplace(name, std::move(loaded));
+    return image;
+}
+
 }  // namespace
 
 LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image) {
@@ -69,6 +86,7 @@ LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image)
         d.iterations = sky.iterations;
         d.horizonMin = static_cast<float>(sky.horizonMin);
         d.horizonMax = static_cast<float>(sky.horizonMax);
+        d.sampleColor = sky.sampleColor;
         s.skyLights.push_back(d);
     }
     s.surfaceLight = info.surfaceLight;
@@ -110,21 +128,7 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
         const LightImage* image = nullptr;
         if (vfs && needsImage(probe)) {
             for (const std::string& candidate : info.lightImageCandidates()) {
-                auto it = set.images.find(candidate);
-                if (it != set.images.end()) {
-                    image = it->second.get();
-                    if (image) break;
-                    continue;
-                }
-                std::unique_ptr<LightImage> loaded;
-                try {
-                    if (std::optional<LoadedImage> li = loadImage(*vfs, candidate))
-                        loaded = std::make_unique<LightImage>(toLightImage(li->image));
-                } catch (const std::exception& e) {
-                    log.warning(e.what());
-                }
-                image = loaded.get();
-                set.images.emplace(candidate, std::move(loaded));
+                image = cachedImage(set, *vfs, candidate, log);
                 if (image) break;
             }
             if (!image) {
@@ -134,6 +138,17 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
         }
         LightingShader resolved = toLightingShader(info, image);
         if (!info.explicitScript) applyBspFlags(resolved, record);
+        const bool wantsSkyColors = std::any_of(resolved.skyLights.begin(), resolved.skyLights.end(),
+                                                [](const SkyLightDirective& d) { return d.sampleColor; });
+        if (vfs && wantsSkyColors && !info.skyParmsEnv.empty()) {
+            static constexpr const char* kSuffixes[6] = {"_lf", "_rt", "_ft", "_bk", "_up", "_dn"};
+            for (size_t k = 0; k < 6; ++k) {
+                resolved.skyBox[k] = cachedImage(set, *vfs, info.skyParmsEnv + kSuffixes[k], log);
+                if (!resolved.skyBox[k])
+                    log.warning(strCat("shader ", name, ": sky image ", info.skyParmsEnv, kSuffixes[k],
+                                       " not found, sky light keeps the shader colour"));
+            }
+        }
         set.shaders.push_back(std::move(resolved));
     }
     return set;

@@ -100,11 +100,11 @@ struct RawLightmap {
     // Lightmap coordinate of each draw vertex of the first surface in BSP luxel units (0..width,
     // 0..height; a luxel centre is at x + 0.5), as q3map2 stores them before packing.
     std::vector<std::array<float, 2>> vertexCoords;
-    std::vector<LightmapTriangle> triangles;  // the surface in super-luxel space
+    std::vector<LightmapTriangle> triangles;  // the surfaces in super-luxel space
     std::vector<Luxel> luxels;                // superWidth() * superHeight(), row-major
     float sampleOffset = 1.0f;
     // Triangles near each super luxel (grid padded by one luxel on every side, CSR layout), so that
-    // sampleRawLightmap does not scan every triangle. Built by layoutSurfaceLightmap.
+    // sampleRawLightmap does not scan every triangle. Built by the layout functions.
     std::vector<uint32_t> cellFirst, cellTriangles;
 
     int superWidth() const { return width * superSample; }

@@ -1,10 +1,8 @@
 #include "lightmap_pack.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numeric>
 #include <system_error>
 #include <tuple>
 
@@ -226,6 +224,48 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         packed.pageUsed.push_back(std::move(page.used));
     }
     return packed;
+}
+
+void fillUnusedTexels(PackedLightmaps& packed) {
+    const int n = packed.pageSize;
+    for (size_t p = 0; p < packed.pages.size(); ++p) {
+        std::vector<uint8_t>& rgb = packed.pages[p];
+        std::vector<uint8_t>& used = packed.pageUsed[p];
+        for (;;) {
+            std::vector<uint8_t> nextRgb = rgb, nextUsed = used;
+            int filled = 0;
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const size_t o = size_t(y) * n + x;
+                    if (used[o]) continue;
+                    const size_t neighbours[4] = {size_t((y + n - 1) % n) * n + x, size_t((y + 1) % n) * n + x,
+                                                  size_t(y) * n + (x + n - 1) % n, size_t(y) * n + (x + 1) % n};
+                    int count = 0, sum[3] = {0, 0, 0};
+                    for (size_t q : neighbours) {
+                        if (!used[q]) continue;
+                        ++count;
+                        for (int c = 0; c < 3; ++c) sum[c] += rgb[q * 3 + size_t(c)];
+                    }
+                    if (count == 0) continue;
+                    for (int c = 0; c < 3; ++c) nextRgb[o * 3 + size_t(c)] = uint8_t(sum[c] / count);
+                    nextUsed[o] = 1;
+                    ++filled;
+                }
+            if (filled == 0) break;
+            rgb.swap(nextRgb);
+            used.swap(nextUsed);
+        }
+    }
+}
+
+void fillUnusedTexelsPink(PackedLightmaps& packed) {
+    for (size_t p = 0; p < packed.pages.size(); ++p)
+        for (size_t o = 0; o < packed.pageUsed[p].size(); ++o) {
+            if (packed.pageUsed[p][o]) continue;
+            packed.pages[p][o * 3] = 255;
+            packed.pages[p][o * 3 + 1] = 0;
+            packed.pages[p][o * 3 + 2] = 255;
+        }
 }
 
 void applyPackedLightmaps(bsp::Bsp& bsp, std::span<const LightmapBlock> blocks, const PackedLightmaps& packed) {

@@ -69,6 +69,13 @@ bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b);
 // Places every block. Deterministic: order = (sortKey, larger area first, input index).
 PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackOptions& options);
 
+// -fill: grows the written texels of every page into the unused ones, pass after pass, each unused
+// texel with a written 4-neighbour (wrapping around the page edges) taking their mean (truncated),
+// until nothing changes (q3map2 FillOutLightmap; helps JPEG/PNG compression of external pages).
+void fillUnusedTexels(PackedLightmaps& packed);
+// -fillpink: every unused texel becomes (255, 0, 255).
+void fillUnusedTexelsPink(PackedLightmaps& packed);
+
 // Rewrites lightmapNum/X/Y/Width/Height of every surface of every block and the lightmap st of its
 // draw vertices ((x + s) / pageSize; solid blocks use the texel centre), and sets bsp.lightmaps to
 // lump14(). Surfaces not in any block are left alone.

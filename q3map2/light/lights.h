@@ -4,6 +4,7 @@
 // same order, including jittered copies (fixed-seed generator per entity).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -110,6 +111,7 @@ struct SkyLightDirective {
     int iterations = 0;
     float horizonMin = 0;
     float horizonMax = 90;
+    bool sampleColor = false;  // colour each sun from the sky box images (when they load)
 };
 
 // RGBA8 image used for light colours, alpha shadows and light filters.
@@ -123,6 +125,9 @@ struct LightImage {
     // Average RGB in 0..1 over all texels.
     Vec3 averageColor() const;
 };
+
+// The six sky box images of a skyParms shader, in the order lf, rt, ft, bk, up, dn (null = missing).
+using SkyBoxImages = std::array<const LightImage*, 6>;
 
 // What the light stage needs to know about one BSP shader, resolved from the shader scripts.
 struct LightingShader {
@@ -151,6 +156,7 @@ struct LightingShader {
     float lightFilterRadius = 0;
 
     const LightImage* lightImage = nullptr;  // owned by the caller, outlives the scene
+    SkyBoxImages skyBox{};                    // skyParms box images, for q3map_skyLight colours
 
     // How the surfaces of this shader receive light.
     int lightmapSampleSize = 0;        // q3map_lightmapSampleSize, 0 = not set
@@ -188,9 +194,11 @@ std::vector<Light> createEntityLights(const std::vector<bsp::Entity>& entities,
 void appendSunLights(std::vector<Light>& out, const SunDirective& sun, int skyIndex, const LightScales& scales,
                      uint32_t seed);
 
-// Adds the ring of suns that approximates q3map_skyLight.
+// Adds the ring of suns that approximates q3map_skyLight. With sky.sampleColor and all six
+// `skyBox` images, each sun takes the cosine-weighted colour of the box around its direction
+// (limited to the dome's hemisphere), the set normalised so its brightest channel is 1.
 void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3 color, int skyIndex, int style,
-                     float filterRadius, const LightScales& scales);
+                     float filterRadius, const LightScales& scales, const SkyBoxImages* skyBox = nullptr);
 
 // Geometry of one BSP surface as the light stage sees it (world coordinates).
 struct EmitterGeometry {

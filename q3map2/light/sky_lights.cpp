@@ -19,6 +19,64 @@ Vec3 directionForSpherical(double azimuth, double elevation) {
             static_cast<float>(std::sin(azimuth) * std::cos(elevation)), static_cast<float>(std::sin(elevation))};
 }
 
+// One direction of the sky box with the colour seen along it, cosine-weighted over its texel block.
+struct SkyProbe {
+    Vec3 color;
+    Vec3 normal;
+};
+
+// Turns a direction of the +x (rt) face into the direction of face `face` (lf, rt, ft, bk, up, dn).
+Vec3 faceDirection(int face, Vec3 d) {
+    switch (face) {
+        case 0: return {-d.x, -d.y, d.z};  // lf: -x
+        case 1: return d;                  // rt: +x
+        case 2: return {d.y, -d.x, d.z};   // ft: -y
+        case 3: return {-d.y, d.x, d.z};   // bk: +y
+        case 4: return {-d.z, d.y, d.x};   // up: +z
+        default: return {d.z, d.y, -d.x};  // dn: -z
+    }
+}
+
+std::vector<SkyProbe> skyProbes(const SkyBoxImages& box) {
+    constexpr int kRes = 64;  // probes per face side
+    std::vector<SkyProbe> probes;
+    for (const LightImage* img : box)
+        if (!img || img->width <= 0 || img->height <= 0) return probes;
+    probes.reserve(static_cast<size_t>(6 * kRes * kRes));
+    for (int face = 0; face < 6; ++face) {
+        const LightImage& img = *box[static_cast<size_t>(face)];
+        for (int u = 0; u < kRes; ++u)
+            for (int v = 0; v < kRes; ++v) {
+                const Vec3 normal = normalize(Vec3{1, 1 - u * 2.0f / kRes, 1 - v * 2.0f / kRes});
+                const int x0 = img.width * u / kRes, x1 = std::max(x0 + 1, img.width * (u + 1) / kRes);
+                const int y0 = img.height * v / kRes, y1 = std::max(y0 + 1, img.height * (v + 1) / kRes);
+                Vec3 sum;
+                for (int x = x0; x < x1; ++x)
+                    for (int y = y0; y < y1; ++y) {
+                        const uint8_t* p = &img.rgba[(static_cast<size_t>(y) * static_cast<size_t>(img.width) +
+                                                      static_cast<size_t>(x)) * 4];
+                        sum += Vec3{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+                    }
+                const Vec3 mean = sum / static_cast<float>((x1 - x0) * (y1 - y0));
+                probes.push_back({mean * (normal.x / 255.0f), faceDirection(face, normal)});
+            }
+    }
+    return probes;
+}
+
+Vec3 sampleProbes(const std::vector<SkyProbe>& probes, Vec3 direction, Vec3 limit) {
+    Vec3 color;
+    double weight = 0;
+    for (const SkyProbe& p : probes) {
+        const float d = dot(p.normal, direction);
+        if (d > 0 && dot(p.normal, limit) >= 0) {
+            color += p.color * d;
+            weight += d;
+        }
+    }
+    return weight != 0 ? color / static_cast<float>(weight) : color;
+}
+
 }  // namespace
 
 void appendSunLights(std::vector<Light>& out, const SunDirective& sun, int skyIndex, const LightScales& scales,
@@ -57,8 +115,11 @@ void appendSunLights(std::vector<Light>& out, const SunDirective& sun, int skyIn
 }
 
 void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3 color, int skyIndex, int style,
-                     float filterRadius, const LightScales& scales) {
+                     float filterRadius, const LightScales& scales, const SkyBoxImages* skyBox) {
     if (sky.value <= 0 || sky.iterations < 2 || sky.horizonMin > sky.horizonMax) return;
+    const std::vector<SkyProbe> probes = sky.sampleColor && skyBox ? skyProbes(*skyBox) : std::vector<SkyProbe>{};
+    const Vec3 limit = sky.horizonMin >= 0 ? Vec3{0, 0, 1} : sky.horizonMax <= 0 ? Vec3{0, 0, -1} : Vec3{};
+    const size_t first = out.size();
 
     const bool doBottom = sky.horizonMin == -90;
     const bool doTop = sky.horizonMax == 90;
@@ -97,6 +158,15 @@ void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3
     if (doTop) {
         sun.direction = {0, 0, 1};
         appendSunLights(out, sun, skyIndex, scales, 0);
+    }
+    if (!probes.empty()) {
+        float brightest = 0;
+        for (size_t i = first; i < out.size(); ++i) {
+            out[i].color = sampleProbes(probes, out[i].normal, limit);
+            brightest = std::max(brightest, maxComponent(out[i].color));
+        }
+        if (brightest > 0)
+            for (size_t i = first; i < out.size(); ++i) out[i].color = out[i].color / brightest;
     }
 }
 

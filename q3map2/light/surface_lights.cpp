@@ -169,7 +169,7 @@ std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<Lig
                     appendSunLights(out, si.suns[k], skyIndex, scales,
                                     static_cast<uint32_t>(shaderNum * 977u + k * 131u + 7u));
             for (const SkyLightDirective& sky : si.skyLights)
-                appendSkyLights(out, sky, si.color, skyIndex, si.lightStyle, si.lightFilterRadius, scales);
+                appendSkyLights(out, sky, si.color, skyIndex, si.lightStyle, si.lightFilterRadius, scales, &si.skyBox);
         }
 
         if (si.surfaceLight <= 0) continue;

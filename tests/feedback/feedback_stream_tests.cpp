@@ -167,6 +167,79 @@ TEST(FeedbackStream, CompileLikeSequenceArrivesAsOneWellFormedDocument) {
     EXPECT_EQ(notices.count(), 0u);
 }
 
+// What NetRadiant does with the chunks: feed them one by one to a libxml2 push parser while the
+// compile is still running. Each element must be complete (its end seen) as soon as it was sent.
+struct PushParserView {
+    int depth = 0;
+    std::vector<std::string> ended;  // names of ended elements at depth 2 (children of the root)
+    std::string rootVersion;
+};
+
+void onStart(void* ctx, const xmlChar* name, const xmlChar** attrs) {
+    auto* view = static_cast<PushParserView*>(ctx);
+    if (view->depth == 0 && attrs && attrs[0] && xmlStrcmp(attrs[0], BAD_CAST "version") == 0)
+        view->rootVersion = reinterpret_cast<const char*>(attrs[1]);
+    ++view->depth;
+}
+void onEnd(void* ctx, const xmlChar* name) {
+    auto* view = static_cast<PushParserView*>(ctx);
+    if (--view->depth == 1) view->ended.emplace_back(reinterpret_cast<const char*>(name));
+}
+
+bool waitForChunks(const TcpListener& listener, size_t count) {
+    auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (listener.chunks().size() < count) {
+        if (std::chrono::steady_clock::now() > deadline) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return true;
+}
+
+TEST(FeedbackStream, EachElementReachesTheEditorAsItIsWritten) {
+    TcpListener listener({});
+    std::string error;
+    auto stream = FeedbackStream::open(loopback(listener.port()), {}, &error);
+    ASSERT_NE(stream, nullptr) << error;
+    ASSERT_TRUE(waitForChunks(listener, 1));
+
+    xmlSAXHandler sax{};
+    sax.startElement = onStart;
+    sax.endElement = onEnd;
+    PushParserView view;
+    std::string header = listener.chunks()[0];
+    xmlParserCtxtPtr parser =
+        xmlCreatePushParserCtxt(&sax, &view, header.data(), static_cast<int>(header.size()), nullptr);
+    ASSERT_NE(parser, nullptr);
+    size_t fed = 1;
+    auto feedNew = [&] {
+        std::vector<std::string> chunks = listener.chunks();
+        for (; fed < chunks.size(); ++fed)
+            xmlParseChunk(parser, chunks[fed].data(), static_cast<int>(chunks[fed].size()), 0);
+    };
+
+    stream->message(FeedbackLevel::Standard, "--- BSP ---\n");
+    ASSERT_TRUE(waitForChunks(listener, 2));
+    feedNew();
+    EXPECT_EQ(view.rootVersion, "1");
+    ASSERT_EQ(view.ended.size(), 1u);
+    EXPECT_EQ(view.ended[0], "message");
+
+    stream->brushSelect(1, 7, "degenerate plane", false);
+    ASSERT_TRUE(waitForChunks(listener, 3));
+    feedNew();
+    ASSERT_EQ(view.ended.size(), 2u);
+    EXPECT_EQ(view.ended[1], "select");
+
+    stream->message(FeedbackLevel::Standard, std::string(3000, 'z'));  // arrives in three chunks
+    ASSERT_TRUE(waitForChunks(listener, 6));
+    feedNew();
+    EXPECT_EQ(view.ended.size(), 3u);
+
+    xmlFreeParserCtxt(parser);
+    stream->close();
+    listener.join();
+}
+
 TEST(FeedbackStream, ConnectsByHostName) {
     TcpListener listener({});
     Log log(false);

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "bspfile.h"
+
 namespace q3::fuzz {
 
 // Where an entry may write files (pk3 archives, JSON folders). One per process, emptied by nobody
@@ -46,6 +48,11 @@ void fuzzShader(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJson(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJsonPack(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPk3(std::span<const uint8_t> input, const FuzzContext& context);
+
+// The BSP whose unpacked JSON folder json_pack edits (and whose files seed the json targets): the
+// bspfile tests' synthetic map with an SH grid in lump 18, an extra BSPX lump, and no lightmap
+// pages (LightBytes.json would be megabytes).
+bsp::Bsp jsonPackSourceBsp();
 
 // The json_pack input format: the first line names one file of the folder, the rest replaces its
 // content. Split here so the seed tool writes exactly what the entry reads.

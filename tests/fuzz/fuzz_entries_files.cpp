@@ -38,11 +38,8 @@ JsonPackFolders jsonPackFolders(const FuzzContext& context) {
 
     fs::remove_all(root);
     fs::create_directories(folders.base);
-    bsp::Bsp source = bsp::test::makeSyntheticBsp();
-    bsp::attachShGrid(source, bsp::test::makeShGridLump(2, 2, 2));
-    source.setBspx("FUZZ_EXTRA", {1, 2, 3, 4, 5});
     Log log(false);
-    json::unpackBsp(source, folders.base, json::JsonOptions{}, log);
+    json::unpackBsp(jsonPackSourceBsp(), folders.base, json::JsonOptions{}, log);
     fs::copy(folders.base, folders.work, fs::copy_options::recursive);
     writeFileAtomic(ready, std::string("ok"));
     return folders;
@@ -69,6 +66,16 @@ void readThroughVfs(const Vfs& vfs, const std::string& path) {
 }
 
 }  // namespace
+
+bsp::Bsp jsonPackSourceBsp() {
+    bsp::Bsp source = bsp::test::makeSyntheticBsp();
+    source.lightmaps.clear();
+    for (bsp::Surface& surface : source.surfaces)
+        if (surface.lightmapNum >= 0) surface.lightmapNum = bsp::kLightmapByVertex;
+    bsp::attachShGrid(source, bsp::test::makeShGridLump(2, 2, 2));
+    source.setBspx("FUZZ_EXTRA", {1, 2, 3, 4, 5});
+    return source;
+}
 
 void fuzzJsonPack(std::span<const uint8_t> input, const FuzzContext& context) {
     const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());

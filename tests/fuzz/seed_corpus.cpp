@@ -221,7 +221,8 @@ void textSeeds(const fs::path& cache, const fs::path& out) {
 
 void jsonSeeds(const fs::path& out, const fs::path& scratch) {
     q3::Log log(false);
-    for (const auto& [name, bsp] : ownBsps()) {
+    const std::pair<std::string, q3::bsp::Bsp> sources[] = {{"own-json.bsp", q3::fuzz::jsonPackSourceBsp()}};
+    for (const auto& [name, bsp] : sources) {
         const fs::path folder = scratch / name;
         fs::remove_all(folder);
         q3::json::unpackBsp(bsp, folder, q3::json::JsonOptions{}, log);

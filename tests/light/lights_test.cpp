@@ -283,6 +283,37 @@ TEST(SunLights, SkyDomeLayout) {
     EXPECT_EQ(suns.back().normal, (Vec3{0, 0, 1}));
 }
 
+TEST(SunLights, SkyDomeColoursFromSkyBox) {
+    auto solid = [](uint8_t r, uint8_t g, uint8_t b) {
+        LightImage img;
+        img.width = img.height = 4;
+        for (int i = 0; i < 16; ++i) img.rgba.insert(img.rgba.end(), {r, g, b, 255});
+        return img;
+    };
+    const LightImage side = solid(0, 0, 200), up = solid(255, 0, 0), down = solid(0, 255, 0);
+    const SkyBoxImages box{&side, &side, &side, &side, &up, &down};
+    SkyLightDirective sky;
+    sky.value = 100;
+    sky.iterations = 3;
+    sky.sampleColor = true;
+    std::vector<Light> suns;
+    appendSkyLights(suns, sky, {1, 1, 1}, 0, 0, 0, {}, &box);
+    ASSERT_EQ(suns.size(), 17u);
+    float brightest = 0;
+    for (const Light& l : suns) {
+        brightest = std::max(brightest, maxComponent(l.color));
+        EXPECT_EQ(l.color.y, 0.0f);  // the ground image is below the dome's horizon
+    }
+    EXPECT_FLOAT_EQ(brightest, 1.0f);
+    const Light& top = suns.back();
+    EXPECT_GT(top.color.x, top.color.z);      // straight up sees the red top
+    EXPECT_GT(suns[0].color.z, suns[0].color.x);  // 15 degrees up sees mostly the blue sides
+    // Without the images the shader colour stays.
+    std::vector<Light> plain;
+    appendSkyLights(plain, sky, {1, 0.5f, 0.5f}, 0, 0, 0, {}, nullptr);
+    EXPECT_EQ(plain[0].color, (Vec3{1, 0.5f, 0.5f}));
+}
+
 TEST(SurfaceLights, AreaLightsChoppedWithBacksplash) {
     LightingShader sh;
     sh.surfaceLight = 100;

@@ -143,6 +143,38 @@ TEST(LightmapPack, NewPagesAndFastAllocation) {
     EXPECT_EQ(s.placements[2].y, 7);
 }
 
+TEST(LightmapPack, FillUnusedTexels) {
+    // A 3x1 block whose middle texel is unused, kept at full size by -nocollapse, on a 4x4 page.
+    LightmapBlock b;
+    b.width = 3;
+    b.height = 1;
+    b.texels = {{100, 0, 0}, {7, 7, 7}, {0, 200, 0}};
+    b.used = {1, 0, 1};
+    PackOptions o = slow(4);
+    o.collapse = false;
+    const PackedLightmaps packed = packLightmaps(std::vector<LightmapBlock>{b}, o);
+    PackedLightmaps filled = packed;
+    fillUnusedTexels(filled);
+    auto texel = [&](int x, int y) {
+        const auto& p = filled.pages[0];
+        return Rgb8{p[size_t(y * 4 + x) * 3], p[size_t(y * 4 + x) * 3 + 1], p[size_t(y * 4 + x) * 3 + 2]};
+    };
+    for (uint8_t u : filled.pageUsed[0]) EXPECT_EQ(u, 1);
+    // First pass: (1,0) and (3,0) (wrapping to (0,0)) average their two written neighbours.
+    EXPECT_EQ(texel(1, 0), (Rgb8{50, 100, 0}));
+    EXPECT_EQ(texel(3, 0), (Rgb8{50, 100, 0}));
+    EXPECT_EQ(texel(0, 1), (Rgb8{100, 0, 0}));
+    EXPECT_EQ(texel(2, 3), (Rgb8{0, 200, 0}));  // wraps from the top row
+    // Second pass: (1,1) sees (1,0), (0,1) and (2,1) from the first pass.
+    EXPECT_EQ(texel(1, 1), (Rgb8{(50 + 100 + 0) / 3, (100 + 0 + 200) / 3, 0}));
+
+    PackedLightmaps pink = packed;
+    fillUnusedTexelsPink(pink);
+    EXPECT_EQ(pink.pages[0][1 * 3], 255);  // the unused middle texel
+    EXPECT_EQ(pink.pages[0][1 * 3 + 1], 0);
+    EXPECT_EQ(pink.pages[0][0], 100);  // written texels untouched
+}
+
 TEST(LightmapPack, BadInput) {
     std::vector<LightmapBlock> tooBig = {gradient(9, 2, 0)};
     EXPECT_THROW(packLightmaps(tooBig, slow(8)), CompileError);

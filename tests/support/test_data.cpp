@@ -52,8 +52,20 @@ fs::path openArenaBase() { return dataCache() / "openarena"; }
 std::vector<fs::path> realBspsForRegistration() {
     fs::path root = cacheRoot();
     if (!fs::exists(root / ".complete-v2")) return {};
-    return findFiles(root / "loose", ".bsp", "maps");
+    std::vector<fs::path> all = findFiles(root / "loose", ".bsp", "maps");
+    const int stride = Q3MAP_TEST_MAP_STRIDE;
+    if (stride <= 1 || all.empty()) return all;
+    std::vector<fs::path> sample;
+    size_t largest = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
+        if (fs::file_size(all[i]) > fs::file_size(all[largest])) largest = i;
+        if (i % static_cast<size_t>(stride) == 0) sample.push_back(all[i]);
+    }
+    if (largest % static_cast<size_t>(stride) != 0) sample.push_back(all[largest]);
+    return sample;
 }
+
+bool realBspsAreSampled() { return Q3MAP_TEST_MAP_STRIDE > 1; }
 
 std::vector<fs::path> allRealBsps() { return findFiles(dataCache() / "loose", ".bsp", "maps"); }
 

@@ -15,8 +15,11 @@ std::filesystem::path dataCache();
 std::filesystem::path openArenaBase();
 // Every BSP unpacked from the packages (about 110), sorted.
 std::vector<std::filesystem::path> allRealBsps();
-// The same list for test registration (INSTANTIATE_TEST_SUITE_P): empty, without failing, when the
-// cache is missing; pair it with a test that asserts the count through allRealBsps().
+// The list for test registration (INSTANTIATE_TEST_SUITE_P) of per-map tests: empty, without
+// failing, when the cache is missing (pair it with a test that asserts the count through
+// allRealBsps()). A build configured with Q3MAP_TEST_MAP_STRIDE=N lists only every Nth map (and
+// always the largest): the sanitizer build uses it to keep the heaviest per-map tests affordable.
+bool realBspsAreSampled();
 std::vector<std::filesystem::path> realBspsForRegistration();
 // The 13 .map sources of openarena-oacmp1, sorted.
 std::vector<std::filesystem::path> oacmpMapSources();

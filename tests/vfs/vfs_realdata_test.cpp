@@ -14,15 +14,34 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::set<std::string>& baseoaPackages() {
-    static const std::set<std::string> names = {"pak1-maps", "pak4-textures", "pak6-patch085", "pak6-patch088",
-                                                "z_oacmp-volume1-v3"};
-    return names;
-}
-
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return s;
+}
+
+// Every entry name of one archive, read with minizip directly (independent of the VFS index).
+std::vector<std::string> zipEntryNames(const fs::path& pk3) {
+    std::vector<std::string> names;
+    unzFile zip = unzOpen64(pk3.string().c_str());
+    if (!zip) return names;
+    for (int status = unzGoToFirstFile(zip); status == UNZ_OK; status = unzGoToNextFile(zip)) {
+        char name[1024];
+        if (unzGetCurrentFileInfo64(zip, nullptr, name, sizeof name, nullptr, 0, nullptr, 0) == UNZ_OK)
+            names.emplace_back(name);
+    }
+    unzClose(zip);
+    return names;
+}
+
+// The archives of the game folder, in ascending case-insensitive name order.
+std::vector<fs::path> baseoaArchives() {
+    std::vector<fs::path> pk3s;
+    for (const auto& entry : fs::directory_iterator(test::openArenaBase() / "baseoa"))
+        if (lower(entry.path().extension().string()) == ".pk3") pk3s.push_back(entry.path());
+    std::sort(pk3s.begin(), pk3s.end(), [](const fs::path& a, const fs::path& b) {
+        return lower(a.filename().string()) < lower(b.filename().string());
+    });
+    return pk3s;
 }
 
 class OpenArena : public ::testing::Test {
@@ -38,21 +57,25 @@ protected:
 };
 
 TEST_F(OpenArena, AllArchivesOpenInNameOrder) {
+    std::vector<std::string> expected;
+    for (const fs::path& pk3 : baseoaArchives()) expected.insert(expected.begin(), pk3.filename().string());
+    ASSERT_GE(expected.size(), 5u);
     std::vector<std::string> names;
     for (const VfsSource& source : vfs_->sources())
-        if (source.kind == VfsSource::Kind::Archive) names.push_back(source.location.stem().string());
-    EXPECT_EQ(names, (std::vector<std::string>{"z_oacmp-volume1-v3", "pak6-patch088", "pak6-patch085",
-                                               "pak4-textures", "pak1-maps"}));
+        if (source.kind == VfsSource::Kind::Archive) names.push_back(source.location.filename().string());
+    EXPECT_EQ(names, expected);
     EXPECT_EQ(log_.warningCount(), 0);
 }
 
 TEST_F(OpenArena, ListsEveryShaderScript) {
-    // The unpacked copies of the same packages say which scripts exist.
+    // The archives' own tables of contents (read with minizip directly) say which scripts exist.
     std::set<std::string> expected;
-    for (const fs::path& script : test::allShaderScripts()) {
-        const std::string package = script.parent_path().parent_path().filename().string();
-        if (baseoaPackages().count(package)) expected.insert("scripts/" + lower(script.filename().string()));
-    }
+    for (const fs::path& pk3 : baseoaArchives())
+        for (const std::string& name : zipEntryNames(pk3)) {
+            const std::string key = lower(name);
+            if (key.starts_with("scripts/") && key.ends_with(".shader") && key.find('/', 8) == std::string::npos)
+                expected.insert(key);
+        }
     ASSERT_GT(expected.size(), 50u);
     const std::vector<std::string> listed = vfs_->list("scripts", "shader");
     std::set<std::string> got;
@@ -61,14 +84,20 @@ TEST_F(OpenArena, ListsEveryShaderScript) {
     EXPECT_EQ(got.size(), listed.size());
     EXPECT_TRUE(std::is_sorted(listed.begin(), listed.end(),
                                [](const std::string& a, const std::string& b) { return lower(a) < lower(b); }));
-    // Each listed script reads back with the same bytes as its unpacked copy.
+    // Scripts read back with the bytes of their unpacked copies (loose/<package>/scripts/), for
+    // every script whose highest-priority copy comes from that package.
+    size_t compared = 0;
     for (const fs::path& script : test::allShaderScripts()) {
         const std::string package = script.parent_path().parent_path().filename().string();
-        if (package != "z_oacmp-volume1-v3") continue;
-        auto bytes = vfs_->read("scripts/" + script.filename().string());
-        ASSERT_TRUE(bytes) << script;
+        const std::string name = "scripts/" + script.filename().string();
+        auto source = vfs_->sourceOf(name);
+        if (!source || source->find("/" + package + ".pk3:") == std::string::npos) continue;
+        auto bytes = vfs_->read(name);
+        ASSERT_TRUE(bytes) << name;
         EXPECT_EQ(*bytes, readFileBytes(script)) << script;
+        ++compared;
     }
+    EXPECT_GT(compared, 50u);
 }
 
 TEST_F(OpenArena, LaterArchiveOverridesEarlierOne) {
@@ -140,18 +169,23 @@ TEST_F(OpenArena, DecodesKnownTextures) {
     }
 }
 
-// Every entry name of one archive, read with minizip directly (independent of the VFS index).
-std::vector<std::string> zipEntryNames(const fs::path& pk3) {
-    std::vector<std::string> names;
-    unzFile zip = unzOpen64(pk3.string().c_str());
-    if (!zip) return names;
-    for (int status = unzGoToFirstFile(zip); status == UNZ_OK; status = unzGoToNextFile(zip)) {
-        char name[1024];
-        if (unzGetCurrentFileInfo64(zip, nullptr, name, sizeof name, nullptr, 0, nullptr, 0) == UNZ_OK)
-            names.emplace_back(name);
-    }
-    unzClose(zip);
-    return names;
+TEST_F(OpenArena, DecodesARealPng) {
+    // pak0's team icons are 8-bit RGBA PNGs; means and centre texel computed independently.
+    auto bytes = vfs_->read("icons/icona_red.png");
+    ASSERT_TRUE(bytes);
+    const Image png = decodeImage(*bytes, "icons/icona_red.png");
+    EXPECT_EQ(png.width, 64);
+    EXPECT_EQ(png.height, 64);
+    const ImageAverage average = averageColor(png);
+    EXPECT_NEAR(average.mean[0], 88.5254f, 0.001f);
+    EXPECT_NEAR(average.mean[1], 6.1426f, 0.001f);
+    EXPECT_NEAR(average.mean[2], 6.1426f, 0.001f);
+    EXPECT_NEAR(average.mean[3], 73.1074f, 0.001f);
+    EXPECT_EQ(sampleNearest(png, 0.5f, 0.5f), (std::array<uint8_t, 4>{245, 17, 17, 235}));
+    // A TGA of the same name exists too, and q3map2's order prefers it even when the PNG is named.
+    auto preferred = loadImage(*vfs_, "icons/icona_red.png");
+    ASSERT_TRUE(preferred);
+    EXPECT_EQ(preferred->path, "icons/icona_red.tga");
 }
 
 TEST_F(OpenArena, EveryShippedImageDecodes) {
@@ -162,7 +196,7 @@ TEST_F(OpenArena, EveryShippedImageDecodes) {
             if (imageFormatFromName(name) != ImageFormat::Unknown) images.insert(lower(name));
     }
     ASSERT_GT(images.size(), 2000u);
-    size_t tgas = 0, jpgs = 0;
+    size_t tgas = 0, jpgs = 0, pngs = 0;
     for (const std::string& name : images) {
         auto bytes = vfs_->read(name);
         ASSERT_TRUE(bytes) << name;
@@ -170,10 +204,12 @@ TEST_F(OpenArena, EveryShippedImageDecodes) {
         ASSERT_FALSE(image.empty()) << name;
         ASSERT_LE(image.width, kMaxImageDimension) << name;
         ASSERT_EQ(image.rgba.size(), size_t(image.width) * image.height * 4) << name;
-        (imageFormatFromName(name) == ImageFormat::Tga ? tgas : jpgs)++;
+        const ImageFormat format = imageFormatFromName(name);
+        (format == ImageFormat::Tga ? tgas : format == ImageFormat::Png ? pngs : jpgs)++;
     }
     EXPECT_GT(tgas, 500u);
     EXPECT_GT(jpgs, 1000u);
+    EXPECT_GE(pngs, 5u);
 }
 
 TEST(OpenArenaDetection, BasePathFromAMapInsideBaseoa) {

@@ -122,6 +122,13 @@ TEST(VfsOrder, FirstBasePathWinsAndBaseGameCanBeOverridden) {
     EXPECT_EQ(text(vfs.read("x.txt")), "one");
     EXPECT_EQ(text(vfs.read("y.txt")), "two");
     EXPECT_EQ(vfs.basePaths().size(), 2u);
+
+    // The same folder given twice (or as the home path) is searched once.
+    options.basePaths = {root / "two", root / "two/"};
+    options.homePath = root / "two";
+    Vfs repeated(options, capture.log);
+    EXPECT_EQ(repeated.sources().size(), 1u);
+    EXPECT_EQ(repeated.readAll("x.txt").size(), 1u);
 }
 
 TEST(VfsLookup, CaseInsensitiveInArchivesAndFolders) {

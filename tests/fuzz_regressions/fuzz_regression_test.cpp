@@ -1,0 +1,84 @@
+// Every committed crash input goes through its target's entry (fuzz_entries.h); the entries
+// themselves are checked on inputs they must accept and on inputs they must reject cleanly.
+#include "fuzz_entries.h"
+
+#include "bspfile.h"
+#include "file_io.h"
+#include "test_data.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace {
+namespace fs = std::filesystem;
+using q3::fuzz::FuzzContext;
+
+const fs::path kRegressions = Q3MAP_FUZZ_REGRESSIONS;
+
+std::span<const uint8_t> bytesOf(const std::string& text) {
+    return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
+}
+
+void run(std::string_view target, std::span<const uint8_t> input, const FuzzContext& context) {
+    const q3::fuzz::FuzzEntry* entry = q3::fuzz::findFuzzEntry(target);
+    ASSERT_NE(entry, nullptr) << target;
+    entry->run(input, context);
+}
+
+// Each folder under regressions/ is named after a target, so no input is silently skipped.
+TEST(FuzzRegressions, FoldersNameKnownTargets) {
+    ASSERT_TRUE(fs::is_directory(kRegressions)) << kRegressions;
+    for (const auto& item : fs::directory_iterator(kRegressions)) {
+        if (!item.is_directory()) continue;
+        EXPECT_NE(q3::fuzz::findFuzzEntry(item.path().filename().string()), nullptr)
+            << item.path() << " does not name a fuzz target";
+    }
+}
+
+TEST(FuzzRegressions, EveryCrashInputIsHandled) {
+    const FuzzContext context{q3::test::tempDir()};
+    std::vector<fs::path> inputs;
+    for (const auto& item : fs::recursive_directory_iterator(kRegressions))
+        if (item.is_regular_file() && item.path().filename() != "README.md") inputs.push_back(item.path());
+    std::sort(inputs.begin(), inputs.end());
+    for (const fs::path& input : inputs) {
+        SCOPED_TRACE(input.string());
+        run(input.parent_path().filename().string(), q3::readFileBytes(input), context);
+    }
+    std::printf("%zu regression inputs replayed\n", inputs.size());
+}
+
+// The entries accept the inputs they are seeded with and reject garbage without escaping errors.
+TEST(FuzzEntries, EveryEntryTakesEmptyAndGarbageInput) {
+    const FuzzContext context{q3::test::tempDir()};
+    const std::string garbage = "\x01\xff{ \"IBSP\" ( [ patchDef2 \n\x00\x00 PK\x03\x04";
+    for (const q3::fuzz::FuzzEntry& entry : q3::fuzz::fuzzEntries()) {
+        SCOPED_TRACE(std::string(entry.name));
+        entry.run({}, context);
+        entry.run(bytesOf(garbage), context);
+    }
+}
+
+TEST(FuzzEntries, BspEntryRoundTripsOurOwnOutput) {
+    const FuzzContext context{q3::test::tempDir()};
+    const std::vector<uint8_t> image = q3::bsp::serializeBsp(q3::fuzz::jsonPackSourceBsp());
+    run("bsp", image, context);
+    run("sh_runtime", image, context);
+}
+
+TEST(FuzzEntries, JsonPackReplacesOneFileAndRestoresIt) {
+    const FuzzContext context{q3::test::tempDir()};
+    // A broken planes.json is a clean JsonError; the folder is valid again for the next input.
+    run("json_pack", bytesOf("planes.json\n{ \"Plane#0\": [1, 2"), context);
+    const fs::path work = context.scratch / "json_pack" / "work";
+    ASSERT_TRUE(fs::exists(work / "planes.json"));
+    EXPECT_EQ(q3::readFileText(work / "planes.json"), q3::readFileText(context.scratch / "json_pack" / "base" / "planes.json"));
+    // Names outside the folder are ignored, never written.
+    run("json_pack", bytesOf("../escape.json\n{}"), context);
+    EXPECT_FALSE(fs::exists(context.scratch / "json_pack" / "escape.json"));
+}
+
+}  // namespace
