@@ -25,3 +25,4 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Per-map tests take every 8th real map (and the largest) here; the release run covers them all.
 ctest --test-dir "$asan" --output-on-failure -j "$jobs" --timeout 2400
+tools/fuzz.sh 30

@@ -176,6 +176,36 @@ TEST(LightPipeline, ThreadCountDoesNotChangeOutput) {
     EXPECT_EQ(readFileBytes(one), readFileBytes(two));
 }
 
+TEST(LightPipeline, ExternalNoGridAndNoTrace) {
+    const std::filesystem::path dir = test::tempDir();
+    const auto path = writeRoom(dir, makeRoom());
+    LightOptions options;
+    options.externalLightmaps = true;
+    options.noGrid = true;
+    options.noTrace = true;
+    ASSERT_EQ(runStage(path, 2, options), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    EXPECT_TRUE(lit.lightmaps.empty());
+    EXPECT_TRUE(lit.lightGrid.empty());
+    EXPECT_TRUE(std::filesystem::exists(dir / "maps" / "room" / "lm_0000.tga"));
+    EXPECT_GE(lit.surfaces[0].lightmapNum, 0);
+}
+
+TEST(LightPipeline, NoTraceLightsTheShadow) {
+    const std::filesystem::path dir = test::tempDir();
+    const auto traced = writeRoom(dir / "a", makeRoom());
+    const auto untraced = writeRoom(dir / "b", makeRoom());
+    LightOptions options;
+    ASSERT_EQ(runStage(traced, 1, options), 0);
+    options.noTrace = true;
+    ASSERT_EQ(runStage(untraced, 1, options), 0);
+    const bsp::Bsp a = bsp::readBsp(traced), b = bsp::readBsp(untraced);
+    // The floor luxel right under the light is in the table's shadow only when tracing.
+    const int x = a.surfaces[0].lightmapWidth / 2, y = a.surfaces[0].lightmapHeight / 2;
+    EXPECT_EQ(texel(a, 0, x, y)[0], 0);
+    EXPECT_GT(texel(b, 0, x, y)[0], 200);
+}
+
 TEST(LightPipeline, MissingBspIsAnError) {
     EXPECT_ANY_THROW(runStage(test::tempDir() / "maps" / "nothing.bsp", 1));
 }

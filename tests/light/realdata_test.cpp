@@ -3,7 +3,9 @@
 
 #include <algorithm>
 
+#include "file_io.h"
 #include "grid_encode.h"
+#include "light_stage.h"
 #include "light_context.h"
 #include "map_file.h"
 #include "shader_info.h"
@@ -101,7 +103,9 @@ TEST(LightRealData, OacmpDm1LightsSceneAndGrid) {
     for (const Light& l : ctx.lights) {
         points += l.type == LightType::Point;
         areas += l.type == LightType::Area;
-        if (l.type != LightType::Sun) EXPECT_GE(l.cluster, 0);
+        if (l.type != LightType::Sun) {
+            EXPECT_GE(l.cluster, 0);
+        }
     }
     EXPECT_GT(points, 100u);
     EXPECT_GT(areas, 0u);
@@ -115,6 +119,35 @@ TEST(LightRealData, OacmpDm1LightsSceneAndGrid) {
         if (p.ambient[0] + p.ambient[1] + p.ambient[2] > 0) ++lit;
     EXPECT_GT(lit, ctx.bsp.lightGrid.size() / 2);
     EXPECT_LE(lit + ctx.stats.gridPointsInSolid, ctx.bsp.lightGrid.size());
+}
+
+TEST(LightRealData, OacmpDm1SameBytesWithOneAndTwoThreads) {
+    const std::filesystem::path dir = test::tempDir();
+    std::filesystem::path mapSource;
+    for (const auto& p : test::oacmpMapSources())
+        if (p.stem() == "oacmpdm1") mapSource = p;
+    ASSERT_FALSE(mapSource.empty());
+    std::vector<std::vector<uint8_t>> outputs;
+    for (int threads : {1, 2}) {
+        const std::filesystem::path maps = dir / std::to_string(threads) / "maps";
+        std::filesystem::create_directories(maps);
+        std::filesystem::copy_file(test::realBsp("oacmpdm1"), maps / "oacmpdm1.bsp");
+        std::filesystem::copy_file(mapSource, maps / "oacmpdm1.map");
+        CommonOptions common;
+        common.mapPath = maps / "oacmpdm1.bsp";
+        common.basePaths = {test::openArenaBase().string()};
+        common.fsGame = "baseoa";
+        common.threads = threads;
+        common.commandLine = "-light -fast oacmpdm1.bsp";
+        LightOptions options;
+        options.fast = true;
+        Log log(false);
+        ASSERT_EQ(runLightStage(options, common, log), 0);
+        outputs.push_back(readFileBytes(common.mapPath));
+    }
+    EXPECT_EQ(outputs[0], outputs[1]);
+    const bsp::Bsp lit = bsp::parseBsp(outputs[0], "oacmpdm1.bsp");
+    EXPECT_FALSE(lit.lightmaps.empty());
 }
 
 }  // namespace

@@ -31,9 +31,39 @@ std::vector<ShaderScriptSource> realScripts() {
     return out;
 }
 
-TEST(RealShaders, EveryScriptParsesWithoutWarnings) {
+// Shader definitions counted independently of the parser: blocks opened at brace depth 0, with
+// comments and quoted strings skipped.
+size_t countTopLevelBlocks(const std::string& text) {
+    size_t count = 0;
+    int depth = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n') ++i;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            size_t end = text.find("*/", i + 2);
+            i = end == std::string::npos ? text.size() : end + 1;
+        } else if (c == '"') {
+            size_t end = text.find('"', i + 1);
+            i = end == std::string::npos ? text.size() : end;
+        } else if (c == '{') {
+            if (depth++ == 0) ++count;
+        } else if (c == '}') {
+            --depth;
+        }
+    }
+    return count;
+}
+
+size_t countAllBlocks(const std::vector<ShaderScriptSource>& scripts) {
+    size_t n = 0;
+    for (const ShaderScriptSource& s : scripts) n += countTopLevelBlocks(s.text);
+    return n;
+}
+
+TEST(RealShaders, EveryScriptParses) {
     std::vector<ShaderScriptSource> scripts = realScripts();
-    ASSERT_EQ(scripts.size(), 96u);
+    ASSERT_GE(scripts.size(), 150u);
     CapturedLog cap;
     size_t definitions = 0;
     for (const ShaderScriptSource& s : scripts) {
@@ -42,15 +72,20 @@ TEST(RealShaders, EveryScriptParsesWithoutWarnings) {
         EXPECT_FALSE(shaders.empty()) << s.path;
         definitions += shaders.size();
     }
-    EXPECT_EQ(definitions, 2136u);
-    EXPECT_TRUE(cap.warnings.empty()) << cap.all();
+    EXPECT_EQ(definitions, countAllBlocks(scripts));
+    // The one questionable line in the data: pak0's clown2.shader gives q3map_surfacelight a texture
+    // name instead of a number, which q3map2 reads as 0.
+    ASSERT_EQ(cap.warnings.size(), 1u) << cap.all();
+    EXPECT_NE(cap.warnings[0].find("clown2.shader:168"), std::string::npos) << cap.all();
+    EXPECT_NE(cap.warnings[0].find("q3map_surfacelight"), std::string::npos) << cap.all();
 }
 
 TEST(RealShaders, TableKeepsFirstOfDuplicateDefinitions) {
     CapturedLog cap;
-    ShaderTable table = buildShaderTable(realScripts(), {}, false, cap.log);
-    EXPECT_EQ(table.files().size(), 96u);
-    EXPECT_EQ(table.size() + static_cast<size_t>(table.duplicateCount()), 2136u);
+    std::vector<ShaderScriptSource> scripts = realScripts();
+    ShaderTable table = buildShaderTable(scripts, {}, false, cap.log);
+    EXPECT_EQ(table.files().size(), scripts.size());
+    EXPECT_EQ(table.size() + static_cast<size_t>(table.duplicateCount()), countAllBlocks(scripts));
     EXPECT_GT(table.duplicateCount(), 0);  // the two patch packages repeat many files
     // Sorted paths put pak6-patch085 before pak6-patch088: its definition is the one kept.
     const ShaderInfo* sky = table.findExplicit("textures/cosmo_skies/desertsky1");

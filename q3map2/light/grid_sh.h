@@ -1,0 +1,98 @@
+// The SH light grid of `-light -sh` (specs/sh-grid.md): its layout (cell size from -gridsh, or the
+// worldspawn "gridsize" divided by -gridscalesh; bounds of model 0; growth past the 1 GiB lump
+// limit), its trace (every light the legacy grid sees, projected as L2 irradiance from its true
+// directions; area lights sampled over their surface; ambient and minlight floors on the uniform
+// band; points in solid nudged out or filled from their neighbours) and how it is stored in a BSP
+// (lump 18 of version 47, or the BSPX lump LIGHTGRID_SH of version 46).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bspfile.h"
+#include "sh.h"
+#include "sh_grid_lump.h"
+#include "vec3.h"
+
+namespace q3 {
+class Log;
+}
+
+namespace q3::light {
+
+struct LightContext;
+struct Light;
+struct LightingEnv;
+
+constexpr float kMinShCellSize = 8.0f;                          // smallest SH cell axis, also the growth step
+constexpr uint64_t kMaxShLumpBytes = uint64_t{1} << 30;         // 1 GiB
+
+struct ShGridLayout {
+    Vec3 requestedSize;            // from -gridsh or gridsize / -gridscalesh, before the clamp
+    Vec3 size;                     // final cell size
+    Vec3 mins;                     // world position of point (0,0,0)
+    std::array<int, 3> bounds{};   // points per axis, each >= 1
+    int growSteps = 0;             // times every axis grew by kMinShCellSize to fit 1 GiB
+    bool clamped = false;          // an axis was raised to kMinShCellSize
+
+    uint64_t numPoints() const {
+        return uint64_t(bounds[0]) * uint64_t(bounds[1]) * uint64_t(bounds[2]);
+    }
+    uint64_t lumpBytes() const { return sh::kGridHeaderBytes + sh::kGridPointBytes * numPoints(); }
+    Vec3 pointOrigin(int x, int y, int z) const {
+        return {mins.x + float(x) * size.x, mins.y + float(y) * size.y, mins.z + float(z) * size.z};
+    }
+};
+
+// Pure layout rule: requested cell size (each axis clamped to >= 8), bounds of the world
+// (mins = s*ceil(worldMins/s), maxs = s*floor(worldMaxs/s), bounds = (maxs-mins)/s + 1, at least 1),
+// growth of every axis by 8 while the lump would exceed `maxLumpBytes`.
+ShGridLayout computeShGridLayout(Vec3 requestedSize, Vec3 worldMins, Vec3 worldMaxs,
+                                 uint64_t maxLumpBytes = kMaxShLumpBytes);
+
+// The requested SH cell size of a run: -gridsh when given, else worldspawn "gridsize" (default
+// 64 64 128) divided by -gridscalesh per axis. Throws CompileError for a malformed "gridsize".
+Vec3 requestedShCellSize(const LightContext& ctx);
+
+// SetupGridSH: layout from the options, worldspawn and model 0; warns when an axis is clamped to 8
+// and when the cell grows to fit 1 GiB (naming the final size).
+ShGridLayout setupGridSH(const LightContext& ctx, Log& log);
+
+struct ShTraceStats {
+    uint64_t points = 0;
+    uint64_t nudged = 0;          // started in solid, moved out within half a cell
+    uint64_t inSolid = 0;         // stayed in solid (filled from neighbours)
+    uint64_t filled = 0;          // in-solid points that received a neighbour average
+    uint64_t blackBeforeFill = 0; // all-zero points after the trace
+    uint64_t blackAfterFill = 0;  // all-zero points at the end
+    std::vector<uint8_t> solid;   // per point: 1 = stayed in solid
+};
+
+// The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
+// before -gridscale). Returns false when the light does not reach the point. `areaSubdivisions`
+// 0 chooses the emitter subdivision from the distance; > 0 forces that many pieces per edge.
+bool addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin, int cluster, const LightingEnv& env,
+                           int areaSubdivisions = 0);
+
+// Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
+// adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform
+// part's irradiance c0 * Y_0 reaches minLight/255.
+void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight);
+
+// Neighbour fill of the points marked in `unset`: each pass gives every unset point next to a set
+// one (6-neighbourhood) the average of its set neighbours, then marks it set; repeated until no
+// point changes. Returns how many points received a value.
+uint64_t fillFromNeighbours(std::vector<sh::GridPointSH>& points, std::vector<uint8_t>& unset,
+                            std::array<int, 3> bounds);
+
+// TraceGridSH: one SH point per layout point, in parallel (each point writes its own slot, so
+// the result does not depend on the thread count).
+sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log& log, ShTraceStats* stats = nullptr);
+
+// With bspx false: lump 18, version 47, 19 header entries (lump 17 left as it is: empty for
+// q3map2 output). With bspx true: version 46 and the BSPX lump LIGHTGRID_SH (lump 18 dropped).
+void attachGridSH(bsp::Bsp& bsp, const sh::GridSH& grid, bool bspx);
+
+}  // namespace q3::light
