@@ -6,7 +6,7 @@ set -euo pipefail
 build_pkgs=(cmake ninja-build g++ pkg-config libembree-dev libtbb-dev libjpeg62-turbo-dev libpng-dev
             zlib1g-dev libminizip-dev rapidjson-dev libxml2-dev libglib2.0-dev libgtest-dev
             libbenchmark-dev ccache)
-test_pkgs=(clang libclang-rt-14-dev glslang-tools unzip ca-certificates)
+test_pkgs=(clang libclang-rt-14-dev glslang-tools unzip ca-certificates python3 time)
 engine_pkgs=(ioquake3 ioquake3-server openarena openarena-server darkplaces darkplaces-server
              fteqcc xvfb xauth libgl1-mesa-dri imagemagick)
 

@@ -51,31 +51,58 @@ std::string atomicTempPrefix(const fs::path& target) {
     return target.filename().string() + ".tmp-";
 }
 
-void writeFileAtomic(const fs::path& path, std::span<const uint8_t> bytes) {
+AtomicFileWriter::AtomicFileWriter(fs::path target) : target_(std::move(target)) {
     static std::atomic<unsigned> counter{0};
-    fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    fs::path temp = dir / (atomicTempPrefix(path) + std::to_string(::getpid()) + "-" +
-                           std::to_string(counter.fetch_add(1)));
-    int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) throw FileError(path.string() + ": cannot create temporary file: " + errnoText());
-    try {
-        writeAll(fd, bytes.data(), bytes.size(), path);
-        if (::fsync(fd) != 0) throw FileError(path.string() + ": fsync failed: " + errnoText());
-        // Keep the permissions of the file we replace.
-        struct stat st {};
-        if (::stat(path.c_str(), &st) == 0) ::fchmod(fd, st.st_mode & 07777);
-        if (::close(fd) != 0) {
-            fd = -1;
-            throw FileError(path.string() + ": close failed: " + errnoText());
-        }
-        fd = -1;
-        if (::rename(temp.c_str(), path.c_str()) != 0)
-            throw FileError(path.string() + ": cannot replace file: " + errnoText());
-    } catch (...) {
-        if (fd >= 0) ::close(fd);
-        ::unlink(temp.c_str());
-        throw;
+    fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+    temp_ = dir / (atomicTempPrefix(target_) + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)));
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw FileError(target_.string() + ": cannot create temporary file: " + errnoText());
+    buffer_.reserve(1 << 20);
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+    if (fd_ >= 0) {
+        ::close(fd_);
+        ::unlink(temp_.c_str());
     }
+}
+
+void AtomicFileWriter::flushBuffer() {
+    writeAll(fd_, buffer_.data(), buffer_.size(), target_);
+    buffer_.clear();
+}
+
+void AtomicFileWriter::write(const void* data, size_t size) {
+    if (fd_ < 0) throw FileError(target_.string() + ": write after commit");
+    const uint8_t* bytes = static_cast<const uint8_t*>(data);
+    if (buffer_.size() + size > buffer_.capacity()) flushBuffer();
+    if (size >= buffer_.capacity()) writeAll(fd_, bytes, size, target_);
+    else buffer_.insert(buffer_.end(), bytes, bytes + size);
+}
+
+void AtomicFileWriter::commit() {
+    if (fd_ < 0) throw FileError(target_.string() + ": committed twice");
+    flushBuffer();
+    if (::fsync(fd_) != 0) throw FileError(target_.string() + ": fsync failed: " + errnoText());
+    // Keep the permissions of the file we replace.
+    struct stat st {};
+    if (::stat(target_.c_str(), &st) == 0) ::fchmod(fd_, st.st_mode & 07777);
+    int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) {
+        ::unlink(temp_.c_str());
+        throw FileError(target_.string() + ": close failed: " + errnoText());
+    }
+    if (::rename(temp_.c_str(), target_.c_str()) != 0) {
+        ::unlink(temp_.c_str());
+        throw FileError(target_.string() + ": cannot replace file: " + errnoText());
+    }
+}
+
+void writeFileAtomic(const fs::path& path, std::span<const uint8_t> bytes) {
+    AtomicFileWriter writer(path);
+    writer.write(bytes.data(), bytes.size());
+    writer.commit();
 }
 
 void writeFileAtomic(const fs::path& path, const std::string& text) {

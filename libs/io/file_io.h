@@ -24,6 +24,28 @@ std::string readFileText(const std::filesystem::path& path);
 void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes);
 void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
 
+// Streaming form of writeFileAtomic for outputs too large to build in memory first: bytes go to
+// the temporary file as they come; commit() flushes it to disk and renames it over the target.
+// Destroyed without commit() (an exception, an early return), the temporary is removed.
+class AtomicFileWriter {
+public:
+    explicit AtomicFileWriter(std::filesystem::path target);
+    ~AtomicFileWriter();
+    AtomicFileWriter(const AtomicFileWriter&) = delete;
+    AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+    void write(const void* data, size_t size);
+    void commit();
+
+private:
+    void flushBuffer();
+
+    std::filesystem::path target_;
+    std::filesystem::path temp_;
+    int fd_ = -1;
+    std::vector<uint8_t> buffer_;
+};
+
 // The prefix of temporary files written by writeFileAtomic ("<name>.tmp-<pid>-<n>"), so that a
 // later run can remove leftovers of a killed one.
 std::string atomicTempPrefix(const std::filesystem::path& target);

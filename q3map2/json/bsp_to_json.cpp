@@ -60,8 +60,7 @@ void writeName(Writer& w, const char* key, const char (&field)[64]) {
 
 // {"Prefix#i": {"Num": v}, ...}: q3map2's form for plain integer and byte lumps.
 template <typename T>
-std::string numFile(const char* prefix, const T* values, size_t count) {
-    Writer w;
+void numFile(Writer& w, const char* prefix, const T* values, size_t count) {
     w.startObject();
     for (size_t i = 0; i < count; ++i) {
         w.indexedKey(prefix, i);
@@ -69,27 +68,26 @@ std::string numFile(const char* prefix, const T* values, size_t count) {
         w.key("Num");
         w.integer(static_cast<int64_t>(values[i]));
         w.endObject();
+        w.drain();
     }
     w.endObject();
-    return w.finish();
 }
 
 template <typename Record, typename Fn>
-std::string recordFile(const char* prefix, const std::vector<Record>& records, Fn writeRecord) {
-    Writer w;
+void recordFile(Writer& w, const char* prefix, const std::vector<Record>& records, Fn writeRecord) {
     w.startObject();
     for (size_t i = 0; i < records.size(); ++i) {
         w.indexedKey(prefix, i);
         writeRecord(w, records[i]);
+        w.drain();
     }
     w.endObject();
-    return w.finish();
 }
 
 // Lump writers --------------------------------------------------------------------------------------
 
-std::string shadersFile(const bsp::Bsp& bsp) {
-    return recordFile("shader", bsp.shaders, [](Writer& w, const bsp::Shader& s) {
+void shadersFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "shader", bsp.shaders, [](Writer& w, const bsp::Shader& s) {
         w.startObject();
         writeName(w, "shader", s.name);
         w.key("surfaceFlags");
@@ -100,8 +98,8 @@ std::string shadersFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string modelsFile(const bsp::Bsp& bsp) {
-    return recordFile("model", bsp.models, [](Writer& w, const bsp::Model& m) {
+void modelsFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "model", bsp.models, [](Writer& w, const bsp::Model& m) {
         w.startObject();
         writeMinMax(w, m.mins, m.maxs);
         w.key("firstBSPSurface"); w.integer(m.firstSurface);
@@ -112,15 +110,15 @@ std::string modelsFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string planesFile(const bsp::Bsp& bsp) {
-    return recordFile("plane", bsp.planes, [](Writer& w, const bsp::Plane& p) {
+void planesFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "plane", bsp.planes, [](Writer& w, const bsp::Plane& p) {
         float v[4] = {p.normal[0], p.normal[1], p.normal[2], p.dist};
         w.floats(v, 4);
     });
 }
 
-std::string leafsFile(const bsp::Bsp& bsp) {
-    return recordFile("leaf", bsp.leafs, [](Writer& w, const bsp::Leaf& l) {
+void leafsFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "leaf", bsp.leafs, [](Writer& w, const bsp::Leaf& l) {
         w.startObject();
         w.key("cluster"); w.integer(l.cluster);
         w.key("area"); w.integer(l.area);
@@ -133,8 +131,8 @@ std::string leafsFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string nodesFile(const bsp::Bsp& bsp) {
-    return recordFile("node", bsp.nodes, [](Writer& w, const bsp::Node& n) {
+void nodesFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "node", bsp.nodes, [](Writer& w, const bsp::Node& n) {
         w.startObject();
         w.key("planeNum"); w.integer(n.planeNum);
         w.key("children"); w.integers(n.children, 2);
@@ -143,8 +141,8 @@ std::string nodesFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string brushesFile(const bsp::Bsp& bsp) {
-    return recordFile("Brush", bsp.brushes, [](Writer& w, const bsp::Brush& b) {
+void brushesFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "Brush", bsp.brushes, [](Writer& w, const bsp::Brush& b) {
         w.startObject();
         w.key("firstSide"); w.integer(b.firstSide);
         w.key("numSides"); w.integer(b.numSides);
@@ -153,8 +151,8 @@ std::string brushesFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string brushSidesFile(const bsp::Bsp& bsp) {
-    return recordFile("BrushSide", bsp.brushSides, [](Writer& w, const bsp::BrushSide& s) {
+void brushSidesFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "BrushSide", bsp.brushSides, [](Writer& w, const bsp::BrushSide& s) {
         w.startObject();
         w.key("planeNum"); w.integer(s.planeNum);
         w.key("shaderNum"); w.integer(s.shaderNum);
@@ -164,8 +162,8 @@ std::string brushSidesFile(const bsp::Bsp& bsp) {
 }
 
 // q3map2 writes draw verts and surfaces in its four-style superset form; Quake 3 uses style 0.
-std::string drawVertsFile(const bsp::Bsp& bsp) {
-    return recordFile("DrawVert", bsp.drawVerts, [](Writer& w, const bsp::DrawVert& v) {
+void drawVertsFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "DrawVert", bsp.drawVerts, [](Writer& w, const bsp::DrawVert& v) {
         static const float zero2[2] = {0, 0};
         static const uint8_t zero4[4] = {0, 0, 0, 0};
         w.startObject();
@@ -186,8 +184,8 @@ std::string drawVertsFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string drawSurfacesFile(const bsp::Bsp& bsp) {
-    return recordFile("DrawSurface", bsp.surfaces, [](Writer& w, const bsp::Surface& s) {
+void drawSurfacesFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "DrawSurface", bsp.surfaces, [](Writer& w, const bsp::Surface& s) {
         const int32_t styles[4] = {0, 255, 255, 255};
         const int32_t lmNum[4] = {s.lightmapNum, bsp::kLightmapByVertex, bsp::kLightmapByVertex, bsp::kLightmapByVertex};
         const int32_t lmX[4] = {s.lightmapX, 0, 0, 0};
@@ -218,8 +216,8 @@ std::string drawSurfacesFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string fogsFile(const bsp::Bsp& bsp) {
-    return recordFile("fog", bsp.fogs, [](Writer& w, const bsp::Fog& f) {
+void fogsFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "fog", bsp.fogs, [](Writer& w, const bsp::Fog& f) {
         w.startObject();
         writeName(w, "shader", f.shader);
         w.key("brushNum"); w.integer(f.brushNum);
@@ -228,8 +226,8 @@ std::string fogsFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string gridPointsFile(const bsp::Bsp& bsp) {
-    return recordFile("GridPoint", bsp.lightGrid, [](Writer& w, const bsp::GridPoint& p) {
+void gridPointsFile(Writer& out, const bsp::Bsp& bsp) {
+    recordFile(out, "GridPoint", bsp.lightGrid, [](Writer& w, const bsp::GridPoint& p) {
         static const uint8_t zero3[3] = {0, 0, 0};
         const int32_t styles[4] = {0, 255, 255, 255};
         w.startObject();
@@ -249,8 +247,7 @@ std::string gridPointsFile(const bsp::Bsp& bsp) {
     });
 }
 
-std::string entitiesFile(const std::vector<bsp::Entity>& entities) {
-    Writer w;
+void entitiesFile(Writer& w, const std::vector<bsp::Entity>& entities) {
     w.startObject();
     for (size_t i = 0; i < entities.size(); ++i) {
         w.indexedKey("entity", i);
@@ -265,22 +262,19 @@ std::string entitiesFile(const std::vector<bsp::Entity>& entities) {
         w.endObject();
     }
     w.endObject();
-    return w.finish();
 }
 
-std::string entityTextFile(const std::string& text) {
-    Writer w;
+void entityTextFile(Writer& w, const std::string& text) {
     w.startObject();
     w.key("text");
     w.string(text);
     w.endObject();
-    return w.finish();
 }
 
-std::string advertisementsFile(const std::vector<uint8_t>& lump) {
+void advertisementsFile(Writer& out, const std::vector<uint8_t>& lump) {
     std::vector<bsp::Advertisement> ads(lump.size() / sizeof(bsp::Advertisement));
     if (!ads.empty()) std::memcpy(ads.data(), lump.data(), ads.size() * sizeof(bsp::Advertisement));
-    return recordFile("advertisement", ads, [](Writer& w, const bsp::Advertisement& a) {
+    recordFile(out, "advertisement", ads, [](Writer& w, const bsp::Advertisement& a) {
         w.startObject();
         w.key("cellId"); w.integer(a.cellId);
         w.key("normal"); w.floats(a.normal, 3);
@@ -293,8 +287,7 @@ std::string advertisementsFile(const std::vector<uint8_t>& lump) {
     });
 }
 
-std::string shGridFile(const sh::GridSH& grid) {
-    Writer w;
+void shGridFile(Writer& w, const sh::GridSH& grid) {
     w.startObject();
     w.key("header");
     w.startObject();
@@ -311,7 +304,6 @@ std::string shGridFile(const sh::GridSH& grid) {
     }
     w.endArray();
     w.endObject();
-    return w.finish();
 }
 
 sh::GridSH decodeShGrid(const std::vector<uint8_t>& bytes, const std::string& where) {
@@ -322,8 +314,7 @@ sh::GridSH decodeShGrid(const std::vector<uint8_t>& bytes, const std::string& wh
 }
 
 // BSPX lumps in file order; the SH grid's entry points at GridPointsSH.json so its position is kept.
-std::string bspxFile(const bsp::Bsp& bsp) {
-    Writer w;
+void bspxFile(Writer& w, const bsp::Bsp& bsp) {
     w.startObject();
     for (size_t i = 0; i < bsp.bspx.size(); ++i) {
         const bsp::BspxLump& lump = bsp.bspx[i];
@@ -341,26 +332,22 @@ std::string bspxFile(const bsp::Bsp& bsp) {
         w.endObject();
     }
     w.endObject();
-    return w.finish();
 }
 
-std::string headerFile(const bsp::Bsp& bsp, const char* shCarrier) {
-    Writer w;
+void headerFile(Writer& w, const bsp::Bsp& bsp, const char* shCarrier) {
     w.startObject();
     w.key("ident"); w.string("IBSP");
     w.key("version"); w.integer(bsp.version);
     w.key("lumpEntries"); w.integer(bsp.headerLumps);
     w.key("shGrid"); w.string(shCarrier);
     w.endObject();
-    return w.finish();
 }
 
 // Lightmap pages as PNG files, listed in LightmapImages.json.
-std::string lightmapImagesFile(const bsp::Bsp& bsp, const fs::path& folder) {
+void lightmapImagesFile(Writer& w, const bsp::Bsp& bsp, const fs::path& folder) {
     const int pageBytes = bsp::kLightmapPageBytes;
     size_t pages = bsp.lightmaps.size() / pageBytes;
     fs::create_directories(folder / "lightmaps");
-    Writer w;
     w.startObject();
     w.key("pageWidth"); w.integer(128);
     w.key("pageHeight"); w.integer(128);
@@ -385,65 +372,72 @@ std::string lightmapImagesFile(const bsp::Bsp& bsp, const fs::path& folder) {
     }
     w.endArray();
     w.endObject();
-    return w.finish();
 }
 
 }  // namespace
 
 void unpackBsp(const bsp::Bsp& bsp, const fs::path& folder, const JsonOptions& options, Log& log) {
     fs::create_directories(folder);
-    auto write = [&](const char* name, const std::string& text) {
+    // Each file streams through a temporary that replaces the old file only when complete.
+    auto write = [&](const char* name, auto&& writeBody) {
         log.info("Writing " + (folder / name).string());
-        writeFileAtomic(folder / name, text);
+        AtomicFileWriter file(folder / name);
+        Writer w(&file);
+        writeBody(w);
+        w.finish();
+        file.commit();
     };
     std::string bspName = folder.string() + ".bsp";
 
-    write(files::kShaders, shadersFile(bsp));
-    write(files::kModels, modelsFile(bsp));
-    write(files::kPlanes, planesFile(bsp));
-    write(files::kLeafs, leafsFile(bsp));
-    write(files::kNodes, nodesFile(bsp));
-    write(files::kLeafSurfaces, numFile("LeafSurface", bsp.leafSurfaces.data(), bsp.leafSurfaces.size()));
-    write(files::kLeafBrushes, numFile("LeafBrush", bsp.leafBrushes.data(), bsp.leafBrushes.size()));
-    write(files::kBrushes, brushesFile(bsp));
-    write(files::kBrushSides, brushSidesFile(bsp));
-    write(files::kDrawVerts, drawVertsFile(bsp));
-    write(files::kDrawSurfaces, drawSurfacesFile(bsp));
-    write(files::kFogs, fogsFile(bsp));
-    write(files::kDrawIndexes, numFile("DrawIndex", bsp.drawIndexes.data(), bsp.drawIndexes.size()));
-    write(files::kVisBytes, numFile("VisByte", bsp.visibility.data(), bsp.visibility.size()));
+    write(files::kShaders, [&](Writer& w) { shadersFile(w, bsp); });
+    write(files::kModels, [&](Writer& w) { modelsFile(w, bsp); });
+    write(files::kPlanes, [&](Writer& w) { planesFile(w, bsp); });
+    write(files::kLeafs, [&](Writer& w) { leafsFile(w, bsp); });
+    write(files::kNodes, [&](Writer& w) { nodesFile(w, bsp); });
+    write(files::kLeafSurfaces, [&](Writer& w) { numFile(w, "LeafSurface", bsp.leafSurfaces.data(), bsp.leafSurfaces.size()); });
+    write(files::kLeafBrushes, [&](Writer& w) { numFile(w, "LeafBrush", bsp.leafBrushes.data(), bsp.leafBrushes.size()); });
+    write(files::kBrushes, [&](Writer& w) { brushesFile(w, bsp); });
+    write(files::kBrushSides, [&](Writer& w) { brushSidesFile(w, bsp); });
+    write(files::kDrawVerts, [&](Writer& w) { drawVertsFile(w, bsp); });
+    write(files::kDrawSurfaces, [&](Writer& w) { drawSurfacesFile(w, bsp); });
+    write(files::kFogs, [&](Writer& w) { fogsFile(w, bsp); });
+    write(files::kDrawIndexes, [&](Writer& w) { numFile(w, "DrawIndex", bsp.drawIndexes.data(), bsp.drawIndexes.size()); });
+    write(files::kVisBytes, [&](Writer& w) { numFile(w, "VisByte", bsp.visibility.data(), bsp.visibility.size()); });
 
     bool pagesAsImages = options.lightmapImages && bsp.lightmaps.size() % bsp::kLightmapPageBytes == 0;
     if (options.lightmapImages && !pagesAsImages)
         log.warning(bspName + ": lightmap lump is not a whole number of 128x128 pages; writing LightBytes.json instead");
     if (pagesAsImages) {
-        write(files::kLightmapImages, lightmapImagesFile(bsp, folder));
+        write(files::kLightmapImages, [&](Writer& w) { lightmapImagesFile(w, bsp, folder); });
     } else {
-        write(files::kLightBytes, numFile("LightByte", bsp.lightmaps.data(), bsp.lightmaps.size()));
+        write(files::kLightBytes, [&](Writer& w) { numFile(w, "LightByte", bsp.lightmaps.data(), bsp.lightmaps.size()); });
     }
 
     std::vector<bsp::Entity> entities = bsp::parseEntities(bsp.entities, bspName);
-    write(files::kEntities, entitiesFile(entities));
-    if (bsp::unparseEntities(entities) != bsp.entities) write(files::kEntityText, entityTextFile(bsp.entities));
-    write(files::kGridPoints, gridPointsFile(bsp));
+    write(files::kEntities, [&](Writer& w) { entitiesFile(w, entities); });
+    if (bsp::unparseEntities(entities) != bsp.entities)
+        write(files::kEntityText, [&](Writer& w) { entityTextFile(w, bsp.entities); });
+    write(files::kGridPoints, [&](Writer& w) { gridPointsFile(w, bsp); });
 
     // What q3map2 has no file for.
     const char* shCarrier = "none";
     if (!bsp.shGrid.empty()) {
         shCarrier = "lump18";
-        write(files::kGridPointsSH, shGridFile(decodeShGrid(bsp.shGrid, bspName + ": lightgrid_sh")));
+        sh::GridSH grid = decodeShGrid(bsp.shGrid, bspName + ": lightgrid_sh");
+        write(files::kGridPointsSH, [&](Writer& w) { shGridFile(w, grid); });
     } else if (const bsp::BspxLump* lump = bsp.findBspx(sh::kBspxLumpName)) {
         shCarrier = "bspx";
-        write(files::kGridPointsSH, shGridFile(decodeShGrid(lump->data, bspName + ": BSPX " + lump->name)));
+        sh::GridSH grid = decodeShGrid(lump->data, bspName + ": BSPX " + lump->name);
+        write(files::kGridPointsSH, [&](Writer& w) { shGridFile(w, grid); });
     }
-    write(files::kHeader, headerFile(bsp, shCarrier));
+    write(files::kHeader, [&](Writer& w) { headerFile(w, bsp, shCarrier); });
     if (!bsp.lump17.empty()) {
         if (bsp.lump17.size() % sizeof(bsp::Advertisement) == 0)
-            write(files::kAdvertisements, advertisementsFile(bsp.lump17));
+            write(files::kAdvertisements, [&](Writer& w) { advertisementsFile(w, bsp.lump17); });
         else
-            write(files::kLump17Bytes, numFile("Lump17Byte", bsp.lump17.data(), bsp.lump17.size()));
+            write(files::kLump17Bytes, [&](Writer& w) { numFile(w, "Lump17Byte", bsp.lump17.data(), bsp.lump17.size()); });
     }
-    if (!bsp.bspx.empty()) write(files::kBspxLumps, bspxFile(bsp));
+    if (!bsp.bspx.empty()) write(files::kBspxLumps, [&](Writer& w) { bspxFile(w, bsp); });
 }
 
 }  // namespace q3::json

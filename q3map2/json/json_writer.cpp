@@ -7,7 +7,7 @@
 
 namespace q3::json {
 
-Writer::Writer() : writer_(buffer_) {
+Writer::Writer(AtomicFileWriter* sink) : sink_(sink), writer_(buffer_) {
     writer_.SetIndent(' ', 4);
     writer_.SetFormatOptions(rapidjson::kFormatSingleLineArray);
 }
@@ -51,10 +51,20 @@ void Writer::floats(const float* v, int n) {
     endArray();
 }
 
+void Writer::drain() {
+    constexpr size_t kPiece = 1 << 20;
+    if (!sink_ || buffer_.GetSize() < kPiece) return;
+    sink_->write(buffer_.GetString(), buffer_.GetSize());
+    buffer_.Clear();
+}
+
 std::string Writer::finish() {
     std::string out(buffer_.GetString(), buffer_.GetSize());
     out += '\n';
-    return out;
+    if (!sink_) return out;
+    sink_->write(out.data(), out.size());
+    buffer_.Clear();
+    return {};
 }
 
 }  // namespace q3::json

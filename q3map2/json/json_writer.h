@@ -2,6 +2,8 @@
 // that reads back to the same bits.
 #pragma once
 
+#include "file_io.h"
+
 #include <rapidjson/prettywriter.h>
 #include <rapidjson/stringbuffer.h>
 
@@ -13,7 +15,9 @@ namespace q3::json {
 
 class Writer {
 public:
-    Writer();
+    // Without a sink the text accumulates in memory (finish() returns it); with one it is passed
+    // on in large pieces as records complete (drain()), so big lumps stream to disk.
+    explicit Writer(AtomicFileWriter* sink = nullptr);
 
     void startObject() { writer_.StartObject(); }
     void endObject() { writer_.EndObject(); }
@@ -35,10 +39,13 @@ public:
         endArray();
     }
 
-    // The finished document, ending with a newline.
+    // Passes the text written so far to the sink once it is large; call between records.
+    void drain();
+    // The finished document, ending with a newline (empty when it went to the sink).
     std::string finish();
 
 private:
+    AtomicFileWriter* sink_;
     rapidjson::StringBuffer buffer_;
     rapidjson::PrettyWriter<rapidjson::StringBuffer> writer_;
 };

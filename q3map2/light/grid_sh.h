@@ -8,10 +8,12 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "bspfile.h"
+#include "light_types.h"
 #include "sh.h"
 #include "sh_grid_lump.h"
 #include "vec3.h"
@@ -71,9 +73,11 @@ struct ShTraceStats {
 };
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
-// before -gridscale). Returns false when the light does not reach the point. `areaSubdivisions`
-// 0 chooses the emitter subdivision from the distance; > 0 forces that many pieces per edge.
-bool addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin, int cluster, const LightingEnv& env,
+// before -gridscale). Returns the legacy grid's contribution of the light (nullopt when it does not
+// reach the point, and then nothing is added). Area lights close to the point are cut into pieces
+// (`areaSubdivisions` per triangle edge, 0 = chosen from the distance, 1 = one directional sample),
+// each projected from its own direction with its own solid angle and shadow ray.
+std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin, int cluster, const LightingEnv& env,
                            int areaSubdivisions = 0);
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient

@@ -53,6 +53,7 @@ struct LightContext {
     // Scene.
     std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
+    std::vector<uint8_t> receiveShadows; // per BSP surface: 0 = lit as if nothing occluded it
     std::vector<int> skyIndices;         // per BSP shader
     std::unique_ptr<BspTree> tree;
     std::unique_ptr<TraceScene> scene;

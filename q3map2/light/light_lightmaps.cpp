@@ -157,9 +157,12 @@ bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast
     return distance(nearest, light.origin) < envelope;
 }
 
-RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& env, int surfaceNum,
+RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv, int surfaceNum,
                           const LayoutOptions& layoutOptions) {
     RawResult result;
+    // Surfaces of entities that do not receive shadows are lit without occlusion.
+    LightingEnv env = sharedEnv;
+    if (!ctx.receiveShadows.empty() && !ctx.receiveShadows[static_cast<size_t>(surfaceNum)]) env.scene = nullptr;
     const bsp::Surface& surface = ctx.bsp.surfaces[static_cast<size_t>(surfaceNum)];
     const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(surface.shaderNum)];
     const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);

@@ -74,6 +74,27 @@ SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offs
     return out;
 }
 
+// Shadow flags of every BSP model from its entity (q3map2 GetEntityShadowFlags): the world casts
+// and receives; other entities receive but cast only with _castShadows / _cs.
+struct ShadowFlags {
+    int cast = 1;
+    int receive = 1;
+};
+
+std::vector<ShadowFlags> modelShadowFlags(const LightContext& ctx) {
+    std::vector<ShadowFlags> flags(ctx.bsp.models.size());
+    for (size_t m = 1; m < flags.size(); ++m) flags[m].cast = 0;
+    for (const bsp::Entity& e : ctx.entities) {
+        const std::string* model = e.find("model");
+        if (!model || model->size() < 2 || (*model)[0] != '*') continue;
+        const int index = std::atoi(model->c_str() + 1);
+        if (index <= 0 || static_cast<size_t>(index) >= flags.size()) continue;
+        flags[static_cast<size_t>(index)].cast = intKey(e, {"_castShadows", "_cs"}).value_or(0);
+        flags[static_cast<size_t>(index)].receive = intKey(e, {"_receiveShadows", "_rs"}).value_or(1);
+    }
+    return flags;
+}
+
 }  // namespace
 
 LightScales lightScalesFromOptions(const LightOptions& o) {
@@ -109,14 +130,26 @@ ColorOptions colorOptionsFromOptions(const LightOptions& o, float maxLight) {
 void buildSurfaceGeometry(LightContext& ctx) {
     const bsp::Bsp& bsp = ctx.bsp;
     const std::vector<Vec3> origins = modelOrigins(ctx);
+    const std::vector<ShadowFlags> modelFlags = modelShadowFlags(ctx);
     std::vector<Vec3> surfaceOffset(bsp.surfaces.size());
+    std::vector<ShadowFlags> surfaceFlags(bsp.surfaces.size());
     for (size_t m = 0; m < bsp.models.size(); ++m) {
         const bsp::Model& model = bsp.models[m];
         for (int i = 0; i < model.numSurfaces; ++i) {
             const size_t s = static_cast<size_t>(model.firstSurface + i);
-            if (s < surfaceOffset.size()) surfaceOffset[s] = origins[m];
+            if (s >= surfaceOffset.size()) continue;
+            surfaceOffset[s] = origins[m];
+            surfaceFlags[s] = modelFlags[m];
         }
     }
+    // The .srf records what -bsp decided per surface (func_groups merged into the world, _cs keys).
+    if (ctx.extras.loaded)
+        for (size_t s = 0; s < surfaceFlags.size(); ++s) {
+            const SurfaceExtra& extra = ctx.extras.forSurface(static_cast<int>(s));
+            surfaceFlags[s] = {extra.castShadows, extra.receiveShadows};
+        }
+    ctx.receiveShadows.assign(bsp.surfaces.size(), 1);
+    for (size_t s = 0; s < surfaceFlags.size(); ++s) ctx.receiveShadows[s] = surfaceFlags[s].receive > 0 ? 1 : 0;
     ctx.surfaceOffsets = surfaceOffset;
     ctx.surfaces.clear();
     ctx.surfaces.resize(bsp.surfaces.size());
@@ -128,6 +161,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
         else if (s.surfaceType == bsp::MST_PATCH)
             geometry = patchGeometry(bsp, s, surfaceOffset[i]);
         geometry.surfaceNum = static_cast<int>(i);
+        geometry.castShadows = surfaceFlags[i].cast > 0;
         if (s.shaderNum >= 0 && static_cast<size_t>(s.shaderNum) < ctx.shaders.shaders.size())
             geometry.shader = &ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)];
         ctx.surfaces[i] = std::move(geometry);

@@ -70,12 +70,14 @@ void lightVertexes(LightContext& ctx, Log& log) {
             const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)];
             if (shader.noVertexLight) continue;
             const Vec3 offset = ctx.surfaceOffsets[i];
+            LightingEnv surfaceEnv = env;
+            if (!ctx.receiveShadows.empty() && !ctx.receiveShadows[i]) surfaceEnv.scene = nullptr;
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];
                 Vec3 color = ctx.vertexFromLightmap[vi]
                                  ? ctx.vertexLight[vi]
-                                 : traceVertex(ctx, env, Vec3::fromArray(dv.xyz) + offset,
+                                 : traceVertex(ctx, surfaceEnv, Vec3::fromArray(dv.xyz) + offset,
                                                normalize(Vec3::fromArray(dv.normal)), shader.twoSided,
                                                shader.forceSunlight);
                 color = vmax(color, ctx.world.minVertexLight);

@@ -97,7 +97,7 @@ struct TraceScene::EmbreeState {
 };
 
 bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOptions& options) {
-    if (surface.triangles.empty()) return false;
+    if (surface.triangles.empty() || !surface.castShadows) return false;
     if (surface.isPatch && !options.patchShadows) return false;
     const LightingShader* sh = surface.shader;
     if (!sh) return true;

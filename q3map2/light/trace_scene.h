@@ -25,6 +25,7 @@ struct SceneSurface {
     std::vector<float> st;             // 2 per vertex (texture coordinates), may be empty
     std::vector<uint32_t> triangles;   // 3 indices per triangle
     bool isPatch = false;
+    bool castShadows = true;           // shadow group of its entity (.srf castShadows, _castShadows)
     int skyIndex = -1;                 // sky index of its shader (only meaningful for sky surfaces)
 };
 
@@ -41,7 +42,8 @@ public:
     TraceScene& operator=(const TraceScene&) = delete;
 
     // Whether a surface of this kind blocks light at all (trans/nodraw/fog do not, unless they
-    // alpha-shadow or filter; patches only with -patchshadows).
+    // alpha-shadow or filter; patches only with -patchshadows; entities whose castShadows is 0 do
+    // not).
     static bool castsShadow(const SceneSurface& surface, const TraceSceneOptions& options);
 
     // Colour transmitted from `from` to `to` (1 1 1 = unobstructed, 0 0 0 = blocked). Occluders

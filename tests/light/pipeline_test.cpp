@@ -206,6 +206,38 @@ TEST(LightPipeline, NoTraceLightsTheShadow) {
     EXPECT_GT(texel(b, 0, x, y)[0], 200);
 }
 
+// The table as brush model *1 of a func_static: it casts a shadow only with _castShadows.
+bsp::Bsp makeRoomWithModelTable(const char* castShadows) {
+    bsp::Bsp b = makeRoom();
+    b.models[0].numSurfaces = 1;
+    bsp::Model table{};
+    table.mins[0] = table.mins[1] = 48;
+    table.maxs[0] = table.maxs[1] = 80;
+    table.mins[2] = table.maxs[2] = 50;
+    table.firstSurface = 1;
+    table.numSurfaces = 1;
+    b.models.push_back(table);
+    std::vector<bsp::Entity> ents = bsp::parseEntities(b.entities, "room.bsp");
+    bsp::Entity e;
+    e.pairs = {{"classname", "func_static"}, {"model", "*1"}};
+    if (castShadows) e.pairs.emplace_back("_castShadows", castShadows);
+    ents.push_back(e);
+    b.entities = bsp::unparseEntities(ents);
+    return b;
+}
+
+TEST(LightPipeline, BrushModelsCastShadowsOnlyWhenAsked) {
+    const std::filesystem::path dir = test::tempDir();
+    const auto quiet = writeRoom(dir / "a", makeRoomWithModelTable(nullptr));
+    const auto casting = writeRoom(dir / "b", makeRoomWithModelTable("1"));
+    ASSERT_EQ(runStage(quiet, 1), 0);
+    ASSERT_EQ(runStage(casting, 1), 0);
+    const bsp::Bsp a = bsp::readBsp(quiet), b = bsp::readBsp(casting);
+    const int x = a.surfaces[0].lightmapWidth / 2, y = a.surfaces[0].lightmapHeight / 2;
+    EXPECT_GT(texel(a, 0, x, y)[0], 200);
+    EXPECT_EQ(texel(b, 0, x, y)[0], 0);
+}
+
 TEST(LightPipeline, MissingBspIsAnError) {
     EXPECT_ANY_THROW(runStage(test::tempDir() / "maps" / "nothing.bsp", 1));
 }

@@ -49,6 +49,9 @@ TEST(TraceScene, NonCastingSurfaces) {
     EXPECT_FALSE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &nodraw), {}));
     EXPECT_TRUE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &filter), {}));
     EXPECT_FALSE(TraceScene::castsShadow(patch, {}));
+    SceneSurface quiet = quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    quiet.castShadows = false;
+    EXPECT_FALSE(TraceScene::castsShadow(quiet, {}));
     EXPECT_TRUE(TraceScene::castsShadow(patch, TraceSceneOptions{.patchShadows = true}));
 
     std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &trans)};
