@@ -137,9 +137,10 @@ void checkRange(const Value& record, const char* firstKey, int64_t first, int64_
 
 // Lumps -------------------------------------------------------------------------------------------
 
+// The record files whose values are still needed after reading, for reference checks that report
+// positions. The two largest files (draw verts, grid points) are read and released on their own.
 struct Folder {
-    Document shaders, models, planes, leafs, nodes, brushes, brushSides, drawVerts, drawSurfaces, fogs, entities,
-        gridPoints;
+    Document shaders, models, planes, leafs, nodes, brushes, brushSides, drawSurfaces, fogs, entities;
 };
 
 void readShaders(bsp::Bsp& bsp, const Document& doc, const JsonOptions& options) {
@@ -187,13 +188,6 @@ void readGeometry(bsp::Bsp& bsp, const Folder& f) {
         s.planeNum = r.member("planeNum", c).asInt(c + ".planeNum");
         s.shaderNum = r.member("shaderNum", c).asInt(c + ".shaderNum");
     });
-    bsp.drawVerts = readRecords<bsp::DrawVert>(f.drawVerts, "DrawVert", [](const Value& r, bsp::DrawVert& v, const std::string& c) {
-        readFloats(r.member("xyz", c), v.xyz, 3, c + ".xyz");
-        readFloats(r.member("st", c), v.st, 2, c + ".st");
-        readFloats(styleZero(r.member("lightmap", c), c + ".lightmap"), v.lightmap, 2, c + ".lightmap");
-        readFloats(r.member("normal", c), v.normal, 3, c + ".normal");
-        readBytes(styleZero(r.member("color", c), c + ".color"), v.color, 4, c + ".color");
-    });
     bsp.surfaces = readRecords<bsp::Surface>(f.drawSurfaces, "DrawSurface", [](const Value& r, bsp::Surface& s, const std::string& c) {
         s.shaderNum = r.member("shaderNum", c).asInt(c + ".shaderNum");
         s.fogNum = r.member("fogNum", c).asInt(c + ".fogNum");
@@ -218,10 +212,44 @@ void readGeometry(bsp::Bsp& bsp, const Folder& f) {
         g.brushNum = r.member("brushNum", c).asInt(c + ".brushNum");
         g.visibleSide = r.member("visibleSide", c).asInt(c + ".visibleSide");
     });
-    bsp.lightGrid = readRecords<bsp::GridPoint>(f.gridPoints, "GridPoint", [](const Value& r, bsp::GridPoint& p, const std::string& c) {
-        readBytes(styleZero(r.member("ambient", c), c + ".ambient"), p.ambient, 3, c + ".ambient");
-        readBytes(styleZero(r.member("directed", c), c + ".directed"), p.directed, 3, c + ".directed");
-        readBytes(r.member("latLong", c), p.latLong, 2, c + ".latLong");
+}
+
+void readDrawVerts(bsp::Bsp& bsp, const Document& doc) {
+    bsp.drawVerts = readRecords<bsp::DrawVert>(doc, "DrawVert", [](const Value& r, bsp::DrawVert& v, const std::string& c) {
+        readFloats(r.member("xyz", c), v.xyz, 3, c + ".xyz");
+        readFloats(r.member("st", c), v.st, 2, c + ".st");
+        readFloats(styleZero(r.member("lightmap", c), c + ".lightmap"), v.lightmap, 2, c + ".lightmap");
+        readFloats(r.member("normal", c), v.normal, 3, c + ".normal");
+        readBytes(styleZero(r.member("color", c), c + ".color"), v.color, 4, c + ".color");
+    });
+}
+
+// GridPoints.json is the largest file: streamed, record by record.
+void readGridPoints(bsp::Bsp& bsp, const FolderReader& folder) {
+    std::string text = folder.text(files::kGridPoints);
+    readFlatRecords((folder.folder() / files::kGridPoints).string(), text, [&](const FlatRecord& r) -> std::string {
+        bsp::GridPoint p{};
+        // Quake 3 keeps style 0: the first 3 of ambient/directed (q3map2 writes 4 styles of 3).
+        struct Field {
+            const char* key;
+            uint8_t* out;
+            size_t used, minimum;
+        } fields[] = {{"ambient", p.ambient, 3, 3}, {"directed", p.directed, 3, 3}, {"latLong", p.latLong, 2, 2}};
+        for (const Field& f : fields) {
+            const std::vector<int64_t>* values = r.find(f.key);
+            if (!values) return r.name + ": missing member \"" + f.key + "\"";
+            if (values->size() < f.minimum)
+                return r.name + "." + f.key + ": expected at least " + std::to_string(f.minimum) + " numbers, found " +
+                       std::to_string(values->size());
+            for (size_t i = 0; i < f.used; ++i) {
+                int64_t v = (*values)[i];
+                if (v < 0 || v > 255)
+                    return r.name + "." + f.key + ": byte value " + std::to_string(v) + " is out of range 0..255";
+                f.out[i] = static_cast<uint8_t>(v);
+            }
+        }
+        bsp.lightGrid.push_back(p);
+        return {};
     });
 }
 
@@ -430,10 +458,12 @@ bsp::Bsp packFolder(const fs::path& folderPath, const JsonOptions& options, Log&
         bsp.headerLumps = 19;
     }
 
-    Folder f{folder.document(files::kShaders),    folder.document(files::kModels),      folder.document(files::kPlanes),
-             folder.document(files::kLeafs),      folder.document(files::kNodes),       folder.document(files::kBrushes),
-             folder.document(files::kBrushSides), folder.document(files::kDrawVerts),   folder.document(files::kDrawSurfaces),
-             folder.document(files::kFogs),       folder.document(files::kEntities),    folder.document(files::kGridPoints)};
+    readDrawVerts(bsp, folder.document(files::kDrawVerts));
+    readGridPoints(bsp, folder);
+    Folder f{folder.document(files::kShaders),    folder.document(files::kModels),     folder.document(files::kPlanes),
+             folder.document(files::kLeafs),      folder.document(files::kNodes),      folder.document(files::kBrushes),
+             folder.document(files::kBrushSides), folder.document(files::kDrawSurfaces), folder.document(files::kFogs),
+             folder.document(files::kEntities)};
     readShaders(bsp, f.shaders, options);
     readGeometry(bsp, f);
     constexpr int64_t kIntMin = std::numeric_limits<int32_t>::min(), kIntMax = std::numeric_limits<int32_t>::max();

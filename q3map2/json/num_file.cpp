@@ -89,3 +89,98 @@ std::vector<int64_t> readNumFile(const std::string& name, const std::string& tex
 }
 
 }  // namespace q3::json
+
+namespace q3::json {
+
+const std::vector<int64_t>* FlatRecord::find(std::string_view key) const {
+    for (const auto& [k, v] : members)
+        if (k == key) return &v;
+    return nullptr;
+}
+
+namespace {
+
+// Accepts exactly: { (key: { (key: integer | nested arrays of integers)* })* }
+class FlatRecordHandler : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, FlatRecordHandler> {
+public:
+    explicit FlatRecordHandler(const std::function<std::string(const FlatRecord&)>& onRecord) : onRecord_(onRecord) {}
+
+    bool Default() { return fail("unexpected value"); }
+    bool StartObject() {
+        if (depth_ == 0) { depth_ = 1; return true; }
+        if (depth_ == 1 && haveName_) { depth_ = 2; record_.members.clear(); return true; }
+        return fail(record_.name + ": unexpected object");
+    }
+    bool Key(const char* str, rapidjson::SizeType length, bool) {
+        if (depth_ == 1) { record_.name.assign(str, length); haveName_ = true; return true; }
+        if (depth_ == 2 && arrayDepth_ == 0) {
+            record_.members.emplace_back(std::string(str, length), std::vector<int64_t>{});
+            inMember_ = true;
+            return true;
+        }
+        return fail(record_.name + ": unexpected member");
+    }
+    bool StartArray() {
+        if (!inMember_) return fail(record_.name + ": unexpected array");
+        ++arrayDepth_;
+        return true;
+    }
+    bool EndArray(rapidjson::SizeType) {
+        if (--arrayDepth_ == 0) inMember_ = false;
+        return true;
+    }
+    bool RawNumber(const char* str, rapidjson::SizeType length, bool) {
+        if (!inMember_) return fail(record_.name + ": unexpected number");
+        int64_t v = 0;
+        auto r = std::from_chars(str, str + length, v);
+        if (r.ec != std::errc() || r.ptr != str + length)
+            return fail(record_.name + "." + record_.members.back().first + ": expected an integer, found " +
+                        std::string(str, length));
+        record_.members.back().second.push_back(v);
+        if (arrayDepth_ == 0) inMember_ = false;
+        return true;
+    }
+    bool EndObject(rapidjson::SizeType) {
+        if (depth_ == 2) {
+            depth_ = 1;
+            haveName_ = false;
+            std::string problem = onRecord_(record_);
+            return problem.empty() ? true : fail(problem);
+        }
+        depth_ = 0;
+        return true;
+    }
+
+    std::string error;
+
+private:
+    bool fail(std::string message) {
+        error = std::move(message);
+        return false;
+    }
+    const std::function<std::string(const FlatRecord&)>& onRecord_;
+    FlatRecord record_;
+    int depth_ = 0;
+    int arrayDepth_ = 0;
+    bool haveName_ = false;
+    bool inMember_ = false;
+};
+
+}  // namespace
+
+void readFlatRecords(const std::string& name, const std::string& text,
+                     const std::function<std::string(const FlatRecord&)>& onRecord) {
+    constexpr unsigned flags = rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag |
+                               rapidjson::kParseNumbersAsStringsFlag | rapidjson::kParseStopWhenDoneFlag;
+    FlatRecordHandler handler(onRecord);
+    rapidjson::StringStream stream(text.c_str());
+    rapidjson::Reader reader;
+    rapidjson::ParseResult result = reader.Parse<flags>(stream, handler);
+    if (result.IsError()) {
+        SourceText source{name, text};
+        std::string what = handler.error.empty() ? rapidjson::GetParseError_En(result.Code()) : handler.error;
+        throw JsonError(source.where(result.Offset()) + ": " + what);
+    }
+}
+
+}  // namespace q3::json

@@ -19,7 +19,8 @@ namespace {
 
 constexpr float kGridEpsilon = 0.0f;       // first point-in-solid test (as the legacy grid)
 constexpr float kNudgedEpsilon = -0.125f;  // test of nudged points (as the legacy grid)
-constexpr int kMaxAreaSubdivisions = 6;    // pieces per triangle edge for emitters close to a point
+constexpr int kMaxAreaSubdivisions = 8;    // pieces per triangle edge for emitters close to a point
+constexpr float kPiecesPerRadius = 4.0f;   // pieces per edge ~ this * emitter radius / distance
 constexpr float kAreaPushDistance = 8.0f;  // points this close to an emitter plane are pushed off it
 
 sh::Vec3d toSh(Vec3 v) { return {v.x, v.y, v.z}; }
@@ -46,7 +47,7 @@ int chooseAreaSubdivisions(const Light& light, Vec3 pushed) {
     for (const Vec3& w : light.winding) radius = std::max(radius, distance(w, light.origin));
     const float d = distance(pushed, light.origin);
     if (d <= 0) return kMaxAreaSubdivisions;
-    return std::clamp(static_cast<int>(std::ceil(2.0f * radius / d)), 1, kMaxAreaSubdivisions);
+    return std::clamp(static_cast<int>(std::ceil(kPiecesPerRadius * radius / d)), 1, kMaxAreaSubdivisions);
 }
 
 // A Lambertian emitter of the q3map2 model sends light.add / pi (legacy units) per steradian: the

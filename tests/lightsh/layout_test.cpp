@@ -125,8 +125,8 @@ TEST(ShGridLayout, GrowsPastOneGibWithWarningNamingTheSize) {
 
 TEST(ShGridLayout, SmallLimitGrowsEveryAxisByEight) {
     const ShGridLayout layout = computeShGridLayout({8, 8, 8}, {0, 0, 0}, {64, 64, 64}, 40 + 108 * 27);
-    EXPECT_EQ(layout.size, (Vec3{32, 32, 32}));  // 3 points per axis
-    EXPECT_EQ(layout.growSteps, 3);
+    EXPECT_EQ(layout.size, (Vec3{24, 24, 24}));  // 0, 24, 48: 3 points per axis
+    EXPECT_EQ(layout.growSteps, 2);
     EXPECT_EQ(layout.numPoints(), 27u);
 }
 
@@ -160,7 +160,12 @@ TEST(ShGridLayout, OptionsParseAndRefuseBadValues) {
         ASSERT_NE(o, nullptr) << name;
         EXPECT_TRUE(o->info.implemented) << name;
     }
-    EXPECT_TRUE(find("-gridsh")->info.args[0].range.minExclusive);
+    for (const auto& arg : find("-gridsh")->info.args) {
+        EXPECT_FALSE(arg.range.contains(0));
+        EXPECT_FALSE(arg.range.contains(-8));
+        EXPECT_TRUE(arg.range.contains(24));
+    }
+    EXPECT_FALSE(find("-gridscalesh")->info.args[0].range.contains(0));
     EXPECT_EQ(find("-gridsh")->info.requiredArgs, 3);
 }
 

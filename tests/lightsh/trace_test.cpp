@@ -1,0 +1,372 @@
+// TraceGridSH on scenes built in the test: analytic point-light values, two-sided colour that the
+// legacy grid cannot hold, area lights against a brute-force sum, suns through sky, ambient and the
+// minlight floor, points in solid, thread-count independence, and the BSP attachment.
+#include <gtest/gtest.h>
+
+#include <oneapi/tbb/global_control.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "../light/light_test_util.h"
+#include "grid_encode.h"
+#include "grid_sh.h"
+#include "light_context.h"
+#include "sh_grid_runtime.h"
+
+namespace q3::light {
+namespace {
+
+using sh::Vec3d;
+
+std::unique_ptr<LightContext> makeContext(Vec3 mins, Vec3 maxs, float cell) {
+    auto ctx = std::make_unique<LightContext>();
+    bsp::Model world{};
+    mins.toArray(world.mins);
+    maxs.toArray(world.maxs);
+    ctx->bsp.models.push_back(world);
+    ctx->entities.push_back(test::entity({{"classname", "worldspawn"}}));
+    ctx->bspPath = "maps/trace.bsp";
+    ctx->options.gridSizeSH[0] = ctx->options.gridSizeSH[1] = ctx->options.gridSizeSH[2] = cell;
+    ctx->threads = 1;
+    return ctx;
+}
+
+Light pointLight(Vec3 origin, float intensity, Vec3 color = {1, 1, 1}) {
+    Light l;
+    l.type = LightType::Point;
+    l.origin = origin;
+    l.photons = intensity * 7500.0f;
+    l.color = color;
+    return l;
+}
+
+sh::SH9Color pointSH(const sh::GridSH& grid, size_t i) { return sh::fromGridPoint(grid.points[i]); }
+
+std::vector<Vec3d> randomNormals(int count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0, 1);
+    std::vector<Vec3d> out;
+    while (int(out.size()) < count) {
+        Vec3d v{n(rng), n(rng), n(rng)};
+        const double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+        if (len < 1e-6) continue;
+        out.push_back({v.x / len, v.y / len, v.z / len});
+    }
+    return out;
+}
+
+double dotd(Vec3d a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+TEST(ShTrace, PointLightMatchesLegacyContribution) {
+    auto ctx = makeContext({-64, -64, -64}, {64, 64, 64}, 32);
+    ctx->lights.push_back(pointLight({10, 20, 5}, 300, {1, 0.5f, 0.25f}));
+    test::CapturingLog log;
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    ShTraceStats stats;
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats);
+    ASSERT_EQ(grid.points.size(), 125u);
+    EXPECT_EQ(stats.blackAfterFill, 0u);
+    const LightingEnv env = gridLightingEnv(*ctx);
+    const std::vector<Vec3d> normals = randomNormals(200, 7);
+    for (int i = 0; i < 125; ++i) {
+        const Vec3 origin = layout.pointOrigin(i % 5, (i / 5) % 5, i / 25);
+        const std::optional<LightContribution> c = lightToGridPoint(ctx->lights[0], origin, -1, env);
+        ASSERT_TRUE(c);
+        const sh::SH9Color value = pointSH(grid, size_t(i));
+        // Towards the light: the L2 clamped cosine at n = l is 0.09375 + 0.5 + 0.46875 = 1.0625.
+        const sh::Rgb atLight = sh::evalIrradiance(value, {c->direction.x, c->direction.y, c->direction.z});
+        EXPECT_NEAR(atLight.r, 1.0625 * c->color.x / 255.0, 1e-4 * (1 + c->color.x / 255.0));
+        EXPECT_NEAR(atLight.g, 1.0625 * c->color.y / 255.0, 1e-4 * (1 + c->color.y / 255.0));
+        // Any normal: within the L2 truncation bound of the true max(0, n.l) C.
+        for (const Vec3d& n : normals) {
+            const double truth = std::max(0.0, dotd(n, c->direction)) * c->color.x / 255.0;
+            EXPECT_NEAR(sh::evalIrradiance(value, n).r, truth, 0.0938 * c->color.x / 255.0 + 1e-5);
+        }
+    }
+}
+
+TEST(ShTrace, RedAndBlueOnOppositeSidesLegacyCannot) {
+    auto ctx = makeContext({0, 0, 0}, {0, 0, 0}, 8);  // one point at the origin
+    ctx->lights.push_back(pointLight({0, -100, 0}, 400, {1, 0, 0}));
+    ctx->lights.push_back(pointLight({0, 100, 0}, 250, {0, 0, 1}));
+    test::CapturingLog log;
+    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    ASSERT_EQ(grid.points.size(), 1u);
+    const sh::SH9Color value = pointSH(grid, 0);
+    const sh::Rgb minusY = sh::evalIrradianceClamped(value, {0, -1, 0});
+    const sh::Rgb plusY = sh::evalIrradianceClamped(value, {0, 1, 0});
+    const double red = 400 * 7500.0 / (100 * 100) / 255.0, blue = 250 * 7500.0 / (100 * 100) / 255.0;
+    EXPECT_GT(minusY.r, 5 * minusY.b);
+    EXPECT_GT(plusY.b, 5 * plusY.r);
+    EXPECT_NEAR(minusY.r, red, 0.0938 * (red + blue));
+    EXPECT_NEAR(plusY.b, blue, 0.0938 * (red + blue));
+
+    // The legacy grid keeps one direction: the weaker light, opposite to it, only reaches the
+    // ambient part at a quarter of its strength.
+    const LightingEnv env = gridLightingEnv(*ctx);
+    std::vector<LightContribution> contributions;
+    gatherGridLight(ctx->lights, {0, 0, 0}, -1, env, contributions);
+    const GridSample legacy = accumulateGridSample(contributions, {}, GridOptions{});
+    auto legacyAt = [&](Vec3 n) { return (legacy.ambient + legacy.directed * std::max(0.0f, dot(n, legacy.direction))) / 255.0f; };
+    EXPECT_LT(legacyAt({0, 1, 0}).z, 0.3 * blue);
+    EXPECT_GT(plusY.b, 0.9 * blue);
+}
+
+// Brute-force SH of a square emitter cut into many small pieces (no occlusion).
+sh::SH9Color bruteForceArea(const Light& light, Vec3 corner, Vec3 edgeU, Vec3 edgeV, Vec3 point, int steps) {
+    sh::SH9Color acc;
+    const double radiance = light.add / sh::kPi / 255.0;
+    const float cellArea = length(cross(edgeU, edgeV)) / float(steps * steps);
+    for (int i = 0; i < steps; ++i)
+        for (int j = 0; j < steps; ++j) {
+            const Vec3 p = corner + edgeU * ((i + 0.5f) / steps) + edgeV * ((j + 0.5f) / steps);
+            const Vec3 toPiece = p - point;
+            const float r = length(toPiece);
+            const Vec3 dir = toPiece / r;
+            const double omega = cellArea * std::abs(dot(dir, light.normal)) / (r * r);
+            sh::addDirectionalIrradiance(acc, {dir.x, dir.y, dir.z},
+                                         {light.color.x * radiance * omega, light.color.y * radiance * omega,
+                                          light.color.z * radiance * omega});
+        }
+    return acc;
+}
+
+TEST(ShTrace, AreaLightSampledOverItsSurface) {
+    // A 96 x 96 emitter in the plane z = 0 facing up, seen from close by and off to the side.
+    const Vec3 corner{-48, -48, 0}, edgeU{96, 0, 0}, edgeV{0, 96, 0};
+    Light area;
+    area.type = LightType::Area;
+    area.normal = {0, 0, 1};
+    area.winding = {corner, corner + edgeV, corner + edgeU + edgeV, corner + edgeU};
+    area.origin = Vec3{0, 0, 0} + area.normal;  // nudged off the plane, as surface lights are
+    area.planeDist = dot(area.origin, area.normal);
+    area.add = 3000;
+    area.photons = 1;
+    area.color = {1, 0.9f, 0.8f};
+    const LightingEnv env;
+    const std::vector<Vec3d> normals = randomNormals(300, 11);
+    for (const Vec3 point : {Vec3{30, 10, 40}, Vec3{0, 0, 24}, Vec3{-70, 20, 30}}) {
+        const sh::SH9Color truth = bruteForceArea(area, corner, edgeU, edgeV, point, 400);
+        sh::SH9Color sampled, single;
+        ASSERT_TRUE(addLightToGridPointSH(sampled, area, point, -1, env));
+        ASSERT_TRUE(addLightToGridPointSH(single, area, point, -1, env, 1));
+        double peak = 0, errSampled = 0, errSingle = 0;
+        for (const Vec3d& n : normals) {
+            const double t = sh::evalIrradiance(truth, n).r;
+            peak = std::max(peak, t);
+            errSampled = std::max(errSampled, std::abs(sh::evalIrradiance(sampled, n).r - t));
+            errSingle = std::max(errSingle, std::abs(sh::evalIrradiance(single, n).r - t));
+        }
+        ASSERT_GT(peak, 0.1);
+        EXPECT_LT(errSampled, 0.03 * peak) << "point " << point.x << " " << point.y << " " << point.z;
+        EXPECT_LT(errSampled, 0.5 * errSingle) << "sampling over the emitter must beat one sample";
+        // The uniform band is the emitter's whole solid angle: within 2% of the fine sum.
+        EXPECT_NEAR(sampled.c[0][0], truth.c[0][0], 0.02 * truth.c[0][0]);
+    }
+}
+
+struct SkyScene {
+    LightingShader skyShader;
+    std::vector<SceneSurface> surfaces;
+    SkyScene() {
+        skyShader.sky = true;
+        surfaces.push_back(test::quad({-4096, -4096, 1000}, {8192, 0, 0}, {0, 8192, 0}, &skyShader, 0));
+        surfaces.push_back(test::quad({-200, 0, 500}, {400, 0, 0}, {0, 400, 0}));  // roof over y > 0
+    }
+};
+
+TEST(ShTrace, SunThroughSkyAndJitteredSamples) {
+    SkyScene sky;
+    auto ctx = makeContext({-64, -128, 0}, {64, 128, 0}, 64);  // points at y = -128 .. 128
+    ctx->scene = std::make_unique<TraceScene>(sky.surfaces, TraceSceneOptions{});
+    // Two samples of one sun (what _deviance/_samples produce): each is its own light.
+    for (Vec3 dir : {normalize(Vec3{0.05f, 0, 1}), normalize(Vec3{-0.05f, 0, 1})}) {
+        Light sun;
+        sun.type = LightType::Sun;
+        sun.normal = dir;
+        sun.photons = 100;
+        sun.skyIndex = 0;
+        ctx->lights.push_back(sun);
+    }
+    test::CapturingLog log;
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    ASSERT_EQ(layout.bounds, (std::array<int, 3>{3, 5, 1}));
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
+    for (int y = 0; y < 5; ++y) {
+        const sh::SH9Color v = pointSH(grid, size_t(1 + 3 * y));
+        const double up = sh::evalIrradiance(v, {0, 0, 1}).r;
+        if (layout.pointOrigin(1, y, 0).y < 0) {
+            sh::SH9Color expected;
+            for (const Light& sun : ctx->lights)
+                sh::addDirectionalIrradiance(expected, {sun.normal.x, sun.normal.y, sun.normal.z}, {100 / 255.0, 100 / 255.0, 100 / 255.0});
+            for (int k = 0; k < 9; ++k) EXPECT_NEAR(v.c[k][0], expected.c[k][0], 1e-5) << "coefficient " << k;
+            EXPECT_NEAR(up, 2 * 1.0625 * 100 / 255.0, 0.01);
+        } else {
+            EXPECT_EQ(up, 0.0) << "under the roof, y = " << layout.pointOrigin(1, y, 0).y;
+        }
+    }
+}
+
+TEST(ShTrace, AmbientIsExactAndMinlightIsAFloor) {
+    auto ctx = makeContext({0, 0, 0}, {64, 0, 0}, 32);
+    ctx->world.ambient = {30, 60, 90};
+    test::CapturingLog log;
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
+    for (size_t i = 0; i < grid.points.size(); ++i)
+        for (const Vec3d& n : randomNormals(50, 3)) {
+            const sh::Rgb v = sh::evalIrradiance(pointSH(grid, i), n);
+            EXPECT_NEAR(v.r, 30 / 255.0, 1e-6);
+            EXPECT_NEAR(v.g, 60 / 255.0, 1e-6);
+            EXPECT_NEAR(v.b, 90 / 255.0, 1e-6);
+        }
+    // Floor 50: red and green rise to it, blue (90) stays; the lit directional part is untouched.
+    ctx->world.minGridLight = {50, 50, 50};
+    ctx->lights.push_back(pointLight({200, 0, 0}, 100));
+    const sh::GridSH floored = traceGridSH(*ctx, layout, log.log);
+    const sh::SH9Color v = pointSH(floored, 0);
+    const double y0 = sh::evalBasis({0, 0, 1})[0];
+    // The light adds C * pi * Y0 to coefficient 0, i.e. C / 4 to the uniform part (C = 18.75 at 200 units).
+    const double lightUniform = 0.25 * 100 * 7500.0 / (200.0 * 200.0);
+    EXPECT_NEAR(v.c[0][0] * y0, 50 / 255.0, 1e-6);                          // 30 + 4.7 < 50: raised
+    EXPECT_NEAR(v.c[0][1] * y0, (60 + lightUniform) / 255.0, 1e-6);         // above the floor: as is
+    EXPECT_NEAR(v.c[0][2] * y0, (90 + lightUniform) / 255.0, 1e-6);
+    ctx->world.minGridLight = {};
+    const sh::SH9Color unfloored = pointSH(traceGridSH(*ctx, layout, log.log), 0);
+    for (int k = 1; k < 9; ++k) EXPECT_EQ(v.c[k][0], unfloored.c[k][0]) << "the floor only touches coefficient 0";
+    ctx->world.minGridLight = {50, 50, 50};
+    sh::SH9Color manual;
+    applyAmbientAndFloor(manual, {30, 60, 90}, {50, 50, 50});
+    EXPECT_NEAR(manual.c[0][0] * y0, 50 / 255.0, 1e-9);
+    EXPECT_NEAR(manual.c[0][1] * y0, 60 / 255.0, 1e-9);
+    EXPECT_NEAR(manual.c[0][2] * y0, 90 / 255.0, 1e-9);
+    // -gridscale scales the whole point.
+    ctx->options.gridScale = 2;
+    const sh::GridSH doubled = traceGridSH(*ctx, layout, log.log);
+    EXPECT_NEAR(doubled.points[1].coeffs[3][0], 2 * floored.points[1].coeffs[3][0], 1e-6);
+}
+
+// World split by the plane x = 64: x < 64 is outside the world (solid), x > 64 one open cluster.
+void addHalfSolidTree(bsp::Bsp& b) {
+    b.planes.push_back(bsp::Plane{{1, 0, 0}, 64});
+    bsp::Node node{};
+    node.planeNum = 0;
+    node.children[0] = -1;  // leaf 0
+    node.children[1] = -2;  // leaf 1
+    b.nodes.push_back(node);
+    bsp::Leaf open{}, solid{};
+    open.cluster = 0;
+    solid.cluster = -1;
+    b.leafs.push_back(open);
+    b.leafs.push_back(solid);
+}
+
+std::unique_ptr<LightContext> halfSolidContext() {
+    auto ctx = makeContext({0, 0, 0}, {256, 64, 64}, 16);
+    addHalfSolidTree(ctx->bsp);
+    ctx->tree = std::make_unique<BspTree>(ctx->bsp);
+    ctx->lights.push_back(pointLight({200, 30, 40}, 200, {1, 0.7f, 0.4f}));
+    ctx->lights.push_back(pointLight({120, 10, 10}, 80, {0.2f, 0.4f, 1}));
+    ctx->world.ambient = {3, 3, 3};
+    return ctx;
+}
+
+TEST(ShTrace, PointsInSolidAreNudgedOrFilled) {
+    auto ctx = halfSolidContext();
+    test::CapturingLog log;
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    ShTraceStats stats;
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats);
+    // x = 0..48 are deeper than half a cell (8) into the solid side; x = 64 lies on the plane.
+    const uint64_t perColumn = uint64_t(layout.bounds[1]) * layout.bounds[2];
+    EXPECT_EQ(stats.inSolid, 4 * perColumn);
+    EXPECT_EQ(stats.filled, stats.inSolid);
+    EXPECT_EQ(stats.blackBeforeFill, stats.inSolid);
+    EXPECT_EQ(stats.blackAfterFill, 0u);
+    // A filled point next to the open side takes the average of its set neighbours (only x + 1 is
+    // set among them), so it equals that neighbour.
+    const int bx = layout.bounds[0], by = layout.bounds[1];
+    for (int z = 0; z < layout.bounds[2]; ++z)
+        for (int y = 0; y < by; ++y) {
+            const size_t filled = size_t(3 + y * bx + z * bx * by), free = filled + 1;
+            EXPECT_EQ(std::memcmp(&grid.points[filled], &grid.points[free], sizeof(sh::GridPointSH)), 0);
+        }
+}
+
+TEST(ShTrace, NeighbourFillAveragesAndSpreads) {
+    std::vector<sh::GridPointSH> points(6, sh::GridPointSH{});
+    std::vector<uint8_t> unset = {0, 1, 1, 1, 1, 0};
+    points[0].coeffs[0][0] = 1;
+    points[5].coeffs[0][0] = 3;
+    EXPECT_EQ(fillFromNeighbours(points, unset, {6, 1, 1}), 4u);
+    const float expected[6] = {1, 1, 1, 3, 3, 3};
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(points[size_t(i)].coeffs[0][0], expected[i]) << i;
+    // 2 x 2: the corner opposite the only set point gets the average of the two filled first.
+    std::vector<sh::GridPointSH> square(4, sh::GridPointSH{});
+    std::vector<uint8_t> unsetSquare = {0, 1, 1, 1};
+    square[0].coeffs[4][2] = 2;
+    EXPECT_EQ(fillFromNeighbours(square, unsetSquare, {2, 2, 1}), 3u);
+    EXPECT_EQ(square[3].coeffs[4][2], 2.0f);
+    // Nothing set anywhere: everything stays zero.
+    std::vector<sh::GridPointSH> none(8, sh::GridPointSH{});
+    std::vector<uint8_t> all(8, 1);
+    EXPECT_EQ(fillFromNeighbours(none, all, {2, 2, 2}), 0u);
+}
+
+TEST(ShTrace, SameBytesWithOneAndTwoThreads) {
+    auto ctx = halfSolidContext();
+    for (int i = 0; i < 6; ++i)
+        ctx->lights.push_back(pointLight({80.0f + 25 * i, 5.0f * i, 60.0f - 7 * i}, 50.0f + 10 * i));
+    test::CapturingLog log;
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    std::vector<uint8_t> first, second;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        ctx->threads = 1;
+        first = sh::encodeGridLump(traceGridSH(*ctx, layout, log.log));
+    }
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+        ctx->threads = 2;
+        second = sh::encodeGridLump(traceGridSH(*ctx, layout, log.log));
+    }
+    EXPECT_EQ(first, second);
+}
+
+TEST(ShTrace, AttachAsLump18OrBspx) {
+    sh::GridSH grid;
+    grid.size[0] = grid.size[1] = grid.size[2] = 32;
+    grid.bounds[0] = 2;
+    grid.bounds[1] = grid.bounds[2] = 1;
+    grid.points.assign(2, sh::GridPointSH{});
+    grid.points[1].coeffs[0][1] = 0.5f;
+    bsp::Bsp b;
+    b.models.push_back(bsp::Model{});
+    b.entities = std::string("{\n\"classname\" \"worldspawn\"\n}\n") + '\0';
+    attachGridSH(b, grid, false);
+    EXPECT_EQ(b.version, 47);
+    EXPECT_EQ(b.headerLumps, 19);
+    EXPECT_EQ(b.shGrid, sh::encodeGridLump(grid));
+    EXPECT_TRUE(b.lump17.empty());
+    const std::vector<uint8_t> v47 = bsp::serializeBsp(b);
+    int32_t lump17[2];
+    std::memcpy(lump17, v47.data() + 8 + 17 * 8, 8);
+    EXPECT_EQ(lump17[0], 0);
+    EXPECT_EQ(lump17[1], 0);
+
+    attachGridSH(b, grid, true);
+    EXPECT_EQ(b.version, 46);
+    EXPECT_EQ(b.headerLumps, 17);
+    EXPECT_TRUE(b.shGrid.empty());
+    ASSERT_NE(b.findBspx(sh::kBspxLumpName), nullptr);
+    const std::vector<uint8_t> v46 = bsp::serializeBsp(b);
+    sh::GridRuntime runtime;
+    ASSERT_EQ(runtime.loadFromBsp(v46.data(), v46.size(), "x"), "");
+    EXPECT_EQ(runtime.source(), sh::GridSource::Bspx);
+    EXPECT_EQ(runtime.grid().points[1].coeffs[0][1], 0.5f);
+}
+
+}  // namespace
+}  // namespace q3::light
