@@ -53,7 +53,7 @@ Options parseStageOptions(const q3::cli::OptionTable<Options>& table, const q3::
 }
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
-             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log);
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats);
 
 int run(const std::vector<std::string>& args, q3::Log& log) {
     std::vector<q3::cli::StageDescription> stages = stageList();
@@ -72,13 +72,13 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
         threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(common.threads));
 
     auto start = std::chrono::steady_clock::now();
-    int status = runStage(line, common, stages, log);
+    q3::RunStats stats;
+    int status = runStage(line, common, stages, log, stats);
     if (status == 0 && common.warningsAsErrors && log.warningCount() > 0) {
         log.error(std::to_string(log.warningCount()) + " warning(s) with -werror");
         status = 1;
     }
     if (!common.statsPath.empty()) {
-        q3::RunStats stats;
         stats.stage = line.stage.substr(1);
         stats.map = common.mapPath.string();
         stats.threads = static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
@@ -90,7 +90,7 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
 }
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
-             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log) {
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats) {
     // Each stage checks all of its options before any work starts.
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);
@@ -98,7 +98,7 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
     }
     if (line.stage == "-light") {
         auto options = parseStageOptions(q3::light::lightOptionTable(), line, stages);
-        return q3::light::runLightStage(options, common, log);
+        return q3::light::runLightStage(options, common, log, &stats);
     }
     if (line.stage == "-json") {
         auto options = parseStageOptions(q3::json::jsonOptionTable(), line, stages);

@@ -6,6 +6,8 @@
 #include "file_io.h"
 #include "light_context.h"
 #include "light_stage.h"
+
+#include "grid_encode.h"
 #include "light_text.h"
 #include "map_file.h"
 #include "phase_timer.h"
@@ -90,7 +92,7 @@ void writeLitBsp(LightContext& ctx, Log& log) {
     log.info(strCat("wrote ", ctx.bspPath.string()));
 }
 
-int runLightStage(const LightOptions& options, const CommonOptions& common, Log& log) {
+int runLightStage(const LightOptions& options, const CommonOptions& common, Log& log, RunStats* stats) {
     LightContext ctx;
     ctx.options = options;
     PhaseTimer timer;
@@ -128,6 +130,21 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
                     ctx.scene ? ctx.scene->raysTraced() : 0, " rays traced"));
     timer.printSummary(log);
     log.info(strCat(log.warningCount(), " warnings"));
+    if (stats) {
+        stats->recordPhases(timer);
+        stats->raysTraced = ctx.scene ? ctx.scene->raysTraced() : 0;
+        stats->luxels = ctx.stats.luxels;
+        stats->counters["rawLightmaps"] = static_cast<int64_t>(ctx.stats.lightmaps);
+        stats->counters["vertexes"] = static_cast<int64_t>(ctx.stats.vertexes);
+        stats->counters["gridPointsInSolid"] = static_cast<int64_t>(ctx.stats.gridPointsInSolid);
+        if (!options.noGrid) {
+            // The entity lump now holds the grid size the grid was built with.
+            const bsp::Entity* worldspawn = ctx.entities.empty() ? nullptr : &ctx.entities.front();
+            std::string size = worldspawn ? worldspawn->value("gridsize") : std::string();
+            GridLayout layout = computeGridLayout(parseGridSize(size, ctx.bspPath.string()), ctx.bsp);
+            stats->legacyGrid = GridDimensions{layout.bounds[0], layout.bounds[1], layout.bounds[2]};
+        }
+    }
     return 0;
 }
 

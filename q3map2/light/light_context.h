@@ -18,6 +18,7 @@
 #include "common_options.h"
 #include "log.h"
 #include "shader_info.h"
+#include "sky_visibility.h"
 #include "srf_file.h"
 #include "trace_scene.h"
 #include "vfs.h"
@@ -56,6 +57,7 @@ struct LightContext {
     std::vector<uint8_t> receiveShadows; // per BSP surface: 0 = lit as if nothing occluded it
     std::vector<int> skyIndices;         // per BSP shader
     std::unique_ptr<BspTree> tree;
+    SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
     std::unique_ptr<TraceScene> scene;
     std::vector<Light> lights;
 

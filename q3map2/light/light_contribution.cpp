@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bsp_tree.h"
+#include "sky_visibility.h"
 #include "trace_scene.h"
 
 namespace q3::light {
@@ -19,6 +20,7 @@ float clampedDistance(float dist, float extraDist) {
 }
 
 bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
+    if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
     return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
 }
 
@@ -164,8 +166,8 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
     if (light.type != LightType::Sun) {
         if (env.settings.sunOnly) return std::nullopt;
         if (!sample.twoSided && dot(light.origin, n) - dot(p, n) < 0) return std::nullopt;  // behind the surface
-        if (pvsCulled(light, sample.cluster, env)) return std::nullopt;
     }
+    if (pvsCulled(light, sample.cluster, env)) return std::nullopt;
     if (light.controlled) return controlledContribution(light, p, &n, sample.twoSided, env);
 
     const float envelope = lightEnvelope(light, env.settings.forceFast);
@@ -243,10 +245,8 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
 std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
                                                   const LightingEnv& env) {
     if (!light.affectsGrid) return std::nullopt;
-    if (light.type != LightType::Sun) {
-        if (env.settings.sunOnly) return std::nullopt;
-        if (pvsCulled(light, cluster, env)) return std::nullopt;
-    }
+    if (light.type != LightType::Sun && env.settings.sunOnly) return std::nullopt;
+    if (pvsCulled(light, cluster, env)) return std::nullopt;
     if (light.controlled) return controlledContribution(light, origin, nullptr, false, env);
 
     if (light.type == LightType::Sun) {

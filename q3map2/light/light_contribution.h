@@ -16,6 +16,7 @@ namespace q3::light {
 
 class TraceScene;
 class BspTree;
+class SkyVisibility;
 
 struct ContributionSettings {
     bool faster = false;        // -faster: area lights as inverse square
@@ -34,10 +35,11 @@ struct SamplePoint {
 };
 
 // Read-only services shared by every sample; `scene` nullptr = no occlusion (-notrace),
-// `tree` nullptr = no PVS culling.
+// `tree` nullptr = no PVS culling, `skies` nullptr = no culling of suns by sky visibility.
 struct LightingEnv {
     const TraceScene* scene = nullptr;
     const BspTree* tree = nullptr;
+    const SkyVisibility* skies = nullptr;
     ContributionSettings settings;
 };
 

@@ -27,6 +27,25 @@ GridOptions gridOptionsFromContext(const LightContext& ctx) {
     return g;
 }
 
+// For every cluster, the indices (in light order) of the lights that may reach a grid point in it:
+// the PVS (and, for suns, sky visibility) test done once per cluster and light instead of once per
+// point and light.
+std::vector<std::vector<uint32_t>> gridLightsByCluster(const LightContext& ctx) {
+    const int numClusters = ctx.tree ? ctx.tree->numClusters() : 0;
+    std::vector<std::vector<uint32_t>> byCluster(static_cast<size_t>(std::max(0, numClusters)));
+    for (int c = 0; c < numClusters; ++c)
+        for (size_t i = 0; i < ctx.lights.size(); ++i) {
+            const Light& light = ctx.lights[i];
+            if (!light.affectsGrid) continue;
+            const bool reachable = light.type == LightType::Sun
+                                       ? ctx.skyVisibility.maySeeSky(c, light.skyIndex)
+                                       : light.cluster < 0 || ctx.tree->clusterVisible(c, light.cluster);
+            if (reachable)
+                byCluster[static_cast<size_t>(c)].push_back(static_cast<uint32_t>(i));
+        }
+    return byCluster;
+}
+
 }  // namespace
 
 void lightGrid(LightContext& ctx, Log& log) {
@@ -43,6 +62,10 @@ void lightGrid(LightContext& ctx, Log& log) {
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
     const float nudgeStep = std::max(1.0f, nudgeRadius / 4.0f);
     const bool useTree = ctx.tree && !ctx.bsp.nodes.empty();
+    const std::vector<Vec3> nudges = nudgeOffsets(nudgeRadius, nudgeStep);
+    const std::vector<std::vector<uint32_t>> lightsByCluster = gridLightsByCluster(ctx);
+    std::vector<uint32_t> allLights(ctx.lights.size());
+    for (size_t i = 0; i < allLights.size(); ++i) allLights[i] = static_cast<uint32_t>(i);
 
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
@@ -58,7 +81,7 @@ void lightGrid(LightContext& ctx, Log& log) {
             if (useTree) {
                 cluster = ctx.tree->clusterForPointExt(origin, kGridEpsilon);
                 if (cluster < 0) {
-                    std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, nudgeRadius, nudgeStep, kNudgedEpsilon);
+                    std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, nudges, kNudgedEpsilon);
                     if (!free) {
                         points[static_cast<size_t>(i)] = bsp::GridPoint{};  // the engine skips all-zero points
                         inSolid[static_cast<size_t>(i)] = 1;
@@ -70,7 +93,12 @@ void lightGrid(LightContext& ctx, Log& log) {
             }
             contributions.clear();
             Vec3 total = ctx.world.ambient;
-            for (const Light& light : ctx.lights) {
+            const std::vector<uint32_t>& candidates =
+                cluster >= 0 && static_cast<size_t>(cluster) < lightsByCluster.size()
+                    ? lightsByCluster[static_cast<size_t>(cluster)]
+                    : allLights;
+            for (uint32_t lightIndex : candidates) {
+                const Light& light = ctx.lights[lightIndex];
                 std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, env);
                 if (!c) continue;
                 contributions.push_back(*c);

@@ -66,15 +66,16 @@ struct LuxelSampler {
     const RawLightmap& raw;
     Vec3 offset;
     bool twoSided;
+    // q3map2 nudges a luxel in solid by half a luxel before giving up on it.
+    std::vector<Vec3> nudges = nudgeOffsets(0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample),
+                                            0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample));
 
     std::optional<SamplePoint> samplePoint(Vec3 origin, Vec3 normal) const {
         SamplePoint p{origin + offset, normal, -1, twoSided};
         if (ctx.tree && !ctx.bsp.nodes.empty()) {
             int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
             if (cluster < 0) {
-                // q3map2 nudges a luxel in solid by half a luxel before giving up on it.
-                const float half = 0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample);
-                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(p.origin, half, half, kLuxelEpsilon);
+                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(p.origin, nudges, kLuxelEpsilon);
                 if (!free) return std::nullopt;
                 p.origin = *free;
                 cluster = ctx.tree->clusterForPoint(p.origin);

@@ -182,6 +182,10 @@ void buildScene(LightContext& ctx) {
     for (const LightingShader& s : ctx.shaders.shaders)
         translucent.push_back(s.translucent || s.alphaShadow || s.lightFilter || s.fog ? 1 : 0);
     ctx.tree = std::make_unique<BspTree>(ctx.bsp, translucent);
+    std::vector<int> surfaceSkyIndex(ctx.surfaces.size(), -2);
+    for (const SceneSurface& s : ctx.surfaces)
+        if (s.shader && s.shader->sky) surfaceSkyIndex[static_cast<size_t>(s.surfaceNum)] = s.skyIndex;
+    ctx.skyVisibility = SkyVisibility(ctx.bsp, *ctx.tree, surfaceSkyIndex);
     TraceSceneOptions options;
     options.patchShadows = ctx.options.patchShadows;
     ctx.scene = std::make_unique<TraceScene>(ctx.surfaces, options);
@@ -241,6 +245,7 @@ LightingEnv surfaceLightingEnv(const LightContext& ctx) {
     LightingEnv env;
     env.scene = ctx.options.noTrace ? nullptr : ctx.scene.get();
     env.tree = ctx.tree.get();
+    env.skies = &ctx.skyVisibility;
     env.settings.faster = ctx.options.faster;
     env.settings.lightAngleHL = ctx.options.lightAngleHL;
     env.settings.sunOnly = ctx.options.sunOnly;

@@ -2,6 +2,7 @@
 #include "trace_scene.h"
 
 #include <embree3/rtcore.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -14,37 +15,31 @@
 
 namespace q3::light {
 
-struct TraceScene::Hit {
-    float t;
-    unsigned geomID;
-    unsigned primID;
-    Vec3 factor;
-};
-
 namespace {
 
 constexpr size_t kInlineHits = 48;
 
-// Translucent hits of one ray, stored inline for the common case.
+// One translucent crossing. Trivially constructible: the inline list below is never cleared.
+struct TranslucentHit {
+    float t;
+    unsigned geomID;
+    unsigned primID;
+    float r, g, b;
+};
+
+// Translucent hits of one ray, stored inline for the common case (most rays meet none).
 struct HitList {
     size_t count = 0;
-    std::array<float, kInlineHits> t{};
-    std::array<unsigned, kInlineHits> geom{};
-    std::array<unsigned, kInlineHits> prim{};
-    std::array<Vec3, kInlineHits> factor{};
-    std::vector<std::tuple<float, unsigned, unsigned, Vec3>> overflow;
+    TranslucentHit inlineHits[kInlineHits];
+    std::vector<TranslucentHit> overflow;
 
-    void add(float tt, unsigned g, unsigned p, Vec3 f) {
-        if (count < kInlineHits) {
-            t[count] = tt;
-            geom[count] = g;
-            prim[count] = p;
-            factor[count] = f;
-            ++count;
-        } else {
-            overflow.emplace_back(tt, g, p, f);
-        }
+    void add(const TranslucentHit& h) {
+        if (count < kInlineHits)
+            inlineHits[count++] = h;
+        else
+            overflow.push_back(h);
     }
+    bool empty() const { return count == 0; }
 };
 
 // Embree passes our context back to the filter: the Embree part must come first.
@@ -82,18 +77,69 @@ void collectTranslucentHits(const RTCFilterFunctionNArguments* args) {
         const float u = RTCHitN_u(args->hit, args->N, i);
         const float v = RTCHitN_v(args->hit, args->N, i);
         const float t = RTCRayN_tfar(args->ray, args->N, i);
-        Vec3 f = filterFactor(r, primID, u, v);
+        const Vec3 f = filterFactor(r, primID, u, v);
         if (maxComponent(f) <= 0) continue;  // fully opaque texel: a real hit
-        ctx->hits->add(t, geomID, primID, f);
+        ctx->hits->add(TranslucentHit{t, geomID, primID, f.x, f.y, f.z});
         args->valid[i] = 0;  // keep going through the surface
     }
+}
+
+// Order-independent product of the translucent crossings of one ray.
+Vec3 translucentProduct(HitList& hits) {
+    std::vector<TranslucentHit> sorted(hits.inlineHits, hits.inlineHits + hits.count);
+    sorted.insert(sorted.end(), hits.overflow.begin(), hits.overflow.end());
+    std::sort(sorted.begin(), sorted.end(), [](const TranslucentHit& a, const TranslucentHit& b) {
+        if (a.t != b.t) return a.t < b.t;
+        if (a.geomID != b.geomID) return a.geomID < b.geomID;
+        return a.primID < b.primID;
+    });
+    // A ray through a shared triangle edge reports the same crossing of a surface twice (once per
+    // triangle), and Embree may report one triangle more than once: such hits of one surface within
+    // kSameCrossing of the previous counted one are the same crossing and count once.
+    constexpr float kSameCrossing = 0.01f;
+    Vec3 result{1, 1, 1};
+    std::vector<std::pair<unsigned, float>> counted;  // (surface, distance) of counted crossings
+    for (const TranslucentHit& h : sorted) {
+        bool duplicate = false;
+        for (const auto& [geom, t] : counted)
+            if (geom == h.geomID && h.t - t <= kSameCrossing) duplicate = true;
+        if (duplicate) continue;
+        counted.emplace_back(h.geomID, h.t);
+        result *= Vec3{h.r, h.g, h.b};
+    }
+    return result;
+}
+
+RTCRay makeRay(Vec3 from, Vec3 direction, float tnear, float tfar) {
+    RTCRay ray{};
+    ray.org_x = from.x;
+    ray.org_y = from.y;
+    ray.org_z = from.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = tnear;
+    ray.tfar = tfar;
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+    return ray;
+}
+
+RTCScene newScene(RTCDevice device) {
+    RTCScene scene = rtcNewScene(device);
+    // Robust traversal: grid points and luxels sit on the map's unit lattice and axial sun rays
+    // graze brush edges exactly; without it such rays slip between two triangles of one wall.
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    return scene;
 }
 
 }  // namespace
 
 struct TraceScene::EmbreeState {
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
+    RTCScene scene = nullptr;     // every caster except sky surfaces
+    RTCScene skyScene = nullptr;  // sky surfaces
 };
 
 bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOptions& options) {
@@ -112,9 +158,8 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     : embree_(std::make_unique<EmbreeState>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
-    embree_->scene = rtcNewScene(embree_->device);
-    rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+    embree_->scene = newScene(embree_->device);
+    embree_->skyScene = newScene(embree_->device);
 
     for (const SceneSurface& s : surfaces) {
         if (!castsShadow(s, options)) continue;
@@ -142,80 +187,45 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             rtcSetGeometryIntersectFilterFunction(geom, collectTranslucentHits);
         }
         rtcCommitGeometry(geom);
-        unsigned id = rtcAttachGeometry(embree_->scene, geom);
+        std::vector<Record>& records = rec.sky ? skyRecords_ : records_;
+        const unsigned id = rtcAttachGeometry(rec.sky ? embree_->skyScene : embree_->scene, geom);
         rtcReleaseGeometry(geom);
-        if (id != records_.size()) throw CompileError("embree: unexpected geometry numbering");
-        records_.push_back(std::move(rec));
+        if (id != records.size()) throw CompileError("embree: unexpected geometry numbering");
+        records.push_back(std::move(rec));
     }
     rtcCommitScene(embree_->scene);
+    rtcCommitScene(embree_->skyScene);
     if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
         throw CompileError("embree: building the shadow scene failed");
 }
 
 TraceScene::~TraceScene() {
     if (embree_->scene) rtcReleaseScene(embree_->scene);
+    if (embree_->skyScene) rtcReleaseScene(embree_->skyScene);
     if (embree_->device) rtcReleaseDevice(embree_->device);
 }
 
-Vec3 TraceScene::trace(Vec3 from, Vec3 direction, float tfar, float ignoreNear, bool toSky, int skyIndex) const {
-    rays_.fetch_add(1, std::memory_order_relaxed);
+void TraceScene::countRay() const {
+    const int slot = tbb::this_task_arena::current_thread_index();  // -1 outside any arena
+    rays_[static_cast<size_t>(slot < 0 ? 0 : slot) % kRayCounters].rays.fetch_add(1, std::memory_order_relaxed);
+}
+
+uint64_t TraceScene::raysTraced() const {
+    uint64_t total = 0;
+    for (const RayCounter& c : rays_) total += c.rays.load(std::memory_order_relaxed);
+    return total;
+}
+
+Vec3 TraceScene::occlusion(Vec3 from, Vec3 direction, float tnear, float tfar) const {
     HitList hits;
     RayContext ctx;
     rtcInitIntersectContext(&ctx.base);
     ctx.records = &records_;
     ctx.hits = &hits;
-
-    RTCRayHit rh{};
-    rh.ray.org_x = from.x;
-    rh.ray.org_y = from.y;
-    rh.ray.org_z = from.z;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.tnear = std::max(ignoreNear, 0.0f);
-    rh.ray.tfar = tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(embree_->scene, &ctx.base, &rh);
-
-    float end = tfar;
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-        const Record& r = records_[rh.hit.geomID];
-        if (!toSky || !r.sky) return {};
-        if (skyIndex >= 0 && r.skyIndex != skyIndex) return {};
-        end = rh.ray.tfar;
-    } else if (toSky) {
-        return {};  // escaped the world without meeting the sky
-    }
-
-    // Order-independent product of the translucent surfaces in front of the end point.
-    std::vector<Hit> sorted;
-    sorted.reserve(hits.count + hits.overflow.size());
-    for (size_t i = 0; i < hits.count; ++i) sorted.push_back({hits.t[i], hits.geom[i], hits.prim[i], hits.factor[i]});
-    for (const auto& [t, g, p, f] : hits.overflow) sorted.push_back({t, g, p, f});
-    std::sort(sorted.begin(), sorted.end(), [](const Hit& a, const Hit& b) {
-        if (a.t != b.t) return a.t < b.t;
-        if (a.geomID != b.geomID) return a.geomID < b.geomID;
-        return a.primID < b.primID;
-    });
-    // A ray through a shared triangle edge reports the same crossing of a surface twice (once per
-    // triangle), and Embree may report one triangle more than once: such hits of one surface within
-    // kSameCrossing of the previous counted one are the same crossing and count once.
-    constexpr float kSameCrossing = 0.01f;
-    Vec3 result{1, 1, 1};
-    std::vector<std::pair<unsigned, float>> counted;  // (surface, distance) of counted crossings
-    for (const Hit& h : sorted) {
-        if (h.t >= end) break;
-        bool duplicate = false;
-        for (const auto& [geom, t] : counted)
-            if (geom == h.geomID && h.t - t <= kSameCrossing) duplicate = true;
-        if (duplicate) continue;
-        counted.emplace_back(h.geomID, h.t);
-        result *= h.factor;
-    }
-    return result;
+    RTCRay ray = makeRay(from, direction, tnear, tfar);
+    rtcOccluded1(embree_->scene, &ctx.base, &ray);
+    if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
+    return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(hits);
 }
 
 Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear) const {
@@ -225,11 +235,37 @@ Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear) const {
     // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
     float tfar = dist - std::min(0.01f, dist * 0.5f);
     if (tfar <= ignoreNear) return {1, 1, 1};
-    return trace(from, d / dist, tfar, ignoreNear, false, -1);
+    countRay();
+    const Vec3 dir = d / dist;
+    const float tnear = std::max(ignoreNear, 0.0f);
+    if (!skyRecords_.empty()) {
+        // Sky surfaces block point-light rays like any wall.
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRay ray = makeRay(from, dir, tnear, tfar);
+        rtcOccluded1(embree_->skyScene, &ctx, &ray);
+        if (ray.tfar < 0) return {};
+    }
+    return occlusion(from, dir, tnear, tfar);
 }
 
 Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) const {
-    return trace(from, normalize(direction), std::numeric_limits<float>::infinity(), ignoreNear, true, skyIndex);
+    countRay();
+    if (skyRecords_.empty()) return {};
+    const Vec3 dir = normalize(direction);
+    const float tnear = std::max(ignoreNear, 0.0f);
+    // The nearest sky surface along the ray must be one of this sun's sky...
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh{};
+    rh.ray = makeRay(from, dir, tnear, std::numeric_limits<float>::infinity());
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->skyScene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes the world without meeting the sky
+    if (skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != skyIndex) return {};
+    // ...and nothing opaque may stand in front of it.
+    return occlusion(from, dir, tnear, rh.ray.tfar);
 }
 
 }  // namespace q3::light

@@ -6,8 +6,14 @@
 //
 // Results never depend on the order in which Embree reports hits: translucent hits are
 // collected, sorted by distance and surface, de-duplicated and only then multiplied.
+//
+// Sky surfaces live in a scene of their own: a sun ray first finds the nearest sky surface there
+// (a cheap search among few triangles), then asks the scene of all other casters only whether
+// anything blocks the way to it. Both questions are any-hit occlusion queries except the sky
+// search, so rays stop at the first opaque surface instead of looking for the nearest one.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -54,8 +60,8 @@ public:
     // opaque surface met is a sky surface whose index matches `skyIndex` (-1 accepts any sky).
     Vec3 skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0) const;
 
-    size_t casterCount() const { return records_.size(); }
-    uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
+    size_t casterCount() const { return records_.size() + skyRecords_.size(); }
+    uint64_t raysTraced() const;
 
     // Per-geometry data read by the Embree filter callback.
     struct Record {
@@ -68,13 +74,21 @@ public:
     };
 
 private:
-    struct Hit;
-    Vec3 trace(Vec3 from, Vec3 direction, float tfar, float ignoreNear, bool toSky, int skyIndex) const;
+    // Transmission along the segment [tnear, tfar] of the ray through the non-sky casters.
+    Vec3 occlusion(Vec3 from, Vec3 direction, float tnear, float tfar) const;
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
-    std::vector<Record> records_;  // indexed by Embree geometry id
-    mutable std::atomic<uint64_t> rays_{0};
+    std::vector<Record> records_;     // casters other than sky, indexed by Embree geometry id
+    std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
+    // Rays counted per worker thread (one cache line each) so that counting never makes the
+    // threads fight over one shared counter.
+    struct alignas(64) RayCounter {
+        std::atomic<uint64_t> rays{0};
+    };
+    static constexpr size_t kRayCounters = 64;
+    void countRay() const;
+    mutable std::array<RayCounter, kRayCounters> rays_;
 };
 
 }  // namespace q3::light
