@@ -2,6 +2,7 @@
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
+export CCACHE_BASEDIR := $(CURDIR)
 
 .PHONY: all deps data build demo test test-fast test-asan clean
 

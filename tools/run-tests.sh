@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 release=${1:-build}
 asan=${2:-build-asan}
 jobs=$(nproc)
+# ccache keys on relative paths, so a fresh clone in another folder reuses earlier compilations.
+export CCACHE_BASEDIR="$PWD"
 
 tools/install-deps.sh build test engines
 tools/fetch-openarena.sh >/dev/null
