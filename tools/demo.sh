@@ -16,5 +16,10 @@ src=$(find "$cache/loose" -path "*/maps/$map.map" | head -n 1)
 cp "$bsp" "$work/$map.bsp"
 [ -z "$src" ] || cp "$src" "$work/$map.map"
 
+game="-fs_basepath $cache/openarena -fs_game baseoa"
+echo "== $q3map2 $game -light -fast $work/$map.bsp"
+"$q3map2" $game -light -fast "$work/$map.bsp"
 echo "== $q3map2 -info $work/$map.bsp"
 "$q3map2" -info "$work/$map.bsp"
+echo
+echo "Relit map: $work/$map.bsp"
