@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "feedback_log.h"
 #include "run_stats.h"
+#include "sh_tools.h"
 #include "common_option_table.h"
 #include "info_stage.h"
 #include "light_options.h"
@@ -13,6 +14,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -40,7 +42,25 @@ std::vector<q3::cli::StageDescription> stageList() {
             s.options = q3::cli::describe(q3::json::jsonOptionTable());
         }
     }
+    stages.push_back({"-shprobe", "SH grid probe", "<filename.bsp> X Y Z", true,
+                      q3::cli::describe(q3::shtools::shProbeOptionTable())});
+    stages.push_back({"-shimage", "SH grid picture", "<filename.bsp> OUT.png [Z]", true,
+                      q3::cli::describe(q3::shtools::shImageOptionTable())});
     return stages;
+}
+
+// The SH viewers take their map first (`-shprobe MAP X Y Z`, `-shimage MAP OUT.png [Z]`); rewritten
+// here to the common shape (`-shprobe MAP`) with the positional values parsed into `probe`/`image`.
+std::vector<std::string> takePositionalViewerArgs(std::vector<std::string> args, q3::shtools::ShProbeOptions& probe,
+                                                  q3::shtools::ShImageOptions& image) {
+    auto it = std::find_if(args.begin(), args.end(), [](const std::string& a) { return a == "-shprobe" || a == "-shimage"; });
+    if (it == args.end() || it + 1 == args.end() || (*(it + 1))[0] == '-') return args;
+    std::span<const std::string> rest(&*(it + 1), static_cast<size_t>(args.end() - it - 1));
+    std::string map = *it == "-shprobe" ? q3::shtools::parseShProbeArguments(rest, probe)
+                                        : q3::shtools::parseShImageArguments(rest, image);
+    args.erase(it + 1, args.end());
+    args.push_back(map);
+    return args;
 }
 
 template <class Options>
@@ -53,11 +73,15 @@ Options parseStageOptions(const q3::cli::OptionTable<Options>& table, const q3::
 }
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
-             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats);
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
+             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image);
 
-int run(const std::vector<std::string>& args, q3::Log& log) {
+int run(const std::vector<std::string>& rawArgs, q3::Log& log) {
     std::vector<q3::cli::StageDescription> stages = stageList();
     q3::CommonOptions common;
+    q3::shtools::ShProbeOptions probe;
+    q3::shtools::ShImageOptions image;
+    std::vector<std::string> args = takePositionalViewerArgs(rawArgs, probe, image);
     q3::cli::CommandLine line = q3::cli::splitCommandLine(args, q3::cli::commonOptionTable(), stages, common);
     if (line.help) {
         std::string text = q3::cli::helpText(line, q3::cli::commonOptionTable(), stages);
@@ -73,7 +97,7 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
 
     auto start = std::chrono::steady_clock::now();
     q3::RunStats stats;
-    int status = runStage(line, common, stages, log, stats);
+    int status = runStage(line, common, stages, log, stats, probe, image);
     if (status == 0 && common.warningsAsErrors && log.warningCount() > 0) {
         log.error(std::to_string(log.warningCount()) + " warning(s) with -werror");
         status = 1;
@@ -90,7 +114,8 @@ int run(const std::vector<std::string>& args, q3::Log& log) {
 }
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
-             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats) {
+             const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
+             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image) {
     // Each stage checks all of its options before any work starts.
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);
@@ -99,6 +124,16 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
     if (line.stage == "-light") {
         auto options = parseStageOptions(q3::light::lightOptionTable(), line, stages);
         return q3::light::runLightStage(options, common, log, &stats);
+    }
+    if (line.stage == "-shprobe") {
+        q3::cli::ParseContext context = q3::cli::stageParseContext(line.stage, q3::cli::commonOptionTable(), stages);
+        q3::cli::parseOptions(q3::shtools::shProbeOptionTable(), line.stageArgs, context, probe);
+        return q3::shtools::runShProbeStage(probe, common, log);
+    }
+    if (line.stage == "-shimage") {
+        q3::cli::ParseContext context = q3::cli::stageParseContext(line.stage, q3::cli::commonOptionTable(), stages);
+        q3::cli::parseOptions(q3::shtools::shImageOptionTable(), line.stageArgs, context, image);
+        return q3::shtools::runShImageStage(image, common, log);
     }
     if (line.stage == "-json") {
         auto options = parseStageOptions(q3::json::jsonOptionTable(), line, stages);

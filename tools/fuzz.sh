@@ -54,6 +54,7 @@ run_target() {
   local corpora=("$work" "$seeds/$t")
   [ -d "tests/fuzz/regressions/$t" ] && corpora+=("tests/fuzz/regressions/$t")
   mkdir -p "$work" "$artifacts"
+  rm -f "$logs/$t.rc"
   local rc=0
   TMPDIR="$scratch" "$build/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -print_final_stats=1 \
     -timeout=30 -rss_limit_mb=2048 -artifact_prefix="$artifacts" "${corpora[@]}" >"$logs/$t.log" 2>&1 || rc=$?
@@ -78,7 +79,7 @@ crashed=0
 printf '%-12s %12s %8s %7s %7s  %s\n' target executions exec/s cov ft result
 for t in "${targets[@]}"; do
   log="$logs/$t.log"
-  rc=$(cat "$logs/$t.rc")
+  rc=$(cat "$logs/$t.rc" 2>/dev/null || echo "no exit status")
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   cov=$(grep -oE ' cov: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+' || true)

@@ -62,7 +62,9 @@ void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 origin, Vec3 push
     const float side = dot(origin, light.normal) - windingPlane >= 0 ? 1.0f : -1.0f;
     const size_t n = light.winding.size();
     const float step = 1.0f / float(pieces);
-    auto at = [&](Vec3 p0, Vec3 e1, Vec3 e2, int i, int j) { return p0 + e1 * (float(i) * step) + e2 * (float(j) * step); };
+    auto at = [&](Vec3 p0, Vec3 e1, Vec3 e2, int i, int j) {
+        return p0 + e1 * (float(i) * step) + e2 * (float(j) * step);
+    };
     auto addPiece = [&](Vec3 a, Vec3 b, Vec3 c) {
         const double omega = triangleSolidAngle(sub3(a, pushed), sub3(b, pushed), sub3(c, pushed));
         if (!(omega > 0)) return;
@@ -70,7 +72,8 @@ void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 origin, Vec3 push
         const Vec3 dir = normalize(centroid - pushed);
         if (dir == Vec3{}) return;
         Vec3 transmission{1, 1, 1};
-        if (env.scene) transmission = env.scene->transmission(origin, centroid + light.normal * side, env.settings.ignoreNear);
+        if (env.scene)
+            transmission = env.scene->transmission(origin, centroid + light.normal * side, env.settings.ignoreNear);
         if (transmission == Vec3{}) return;
         const double scale = radiance * omega / 255.0;
         sh::addDirectionalIrradiance(acc, toSh(dir), toRgb(light.color * transmission, scale));
@@ -235,6 +238,7 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
             sh::SH9Color acc;
             Vec3 total = ctx.world.ambient;
             for (const Light& light : ctx.lights) {
+                if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
                 std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
                 if (!c) continue;
                 total += c->color;
@@ -264,6 +268,15 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
                     stats.blackAfterFill, " after"));
     if (statsOut) *statsOut = std::move(stats);
     return grid;
+}
+
+ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
+    ShTraceStats stats;
+    if (!ctx.options.sh && !ctx.options.shBspx) return stats;
+    const ShGridLayout layout = setupGridSH(ctx, log);
+    const sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
+    attachGridSH(ctx.bsp, grid, ctx.options.shBspx);
+    return stats;
 }
 
 }  // namespace q3::light

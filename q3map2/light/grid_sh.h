@@ -77,8 +77,8 @@ struct ShTraceStats {
 // reach the point, and then nothing is added). Area lights close to the point are cut into pieces
 // (`areaSubdivisions` per triangle edge, 0 = chosen from the distance, 1 = one directional sample),
 // each projected from its own direction with its own solid angle and shadow ray.
-std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin, int cluster, const LightingEnv& env,
-                           int areaSubdivisions = 0);
+std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,
+                                                       int cluster, const LightingEnv& env, int areaSubdivisions = 0);
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
 // adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform
@@ -98,5 +98,9 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
 // With bspx false: lump 18, version 47, 19 header entries (lump 17 left as it is: empty for
 // q3map2 output). With bspx true: version 46 and the BSPX lump LIGHTGRID_SH (lump 18 dropped).
 void attachGridSH(bsp::Bsp& bsp, const sh::GridSH& grid, bool bspx);
+
+// The whole SH step of the stage, for the pipeline after lightGrid: nothing without -sh; else
+// setupGridSH, traceGridSH and attachGridSH(ctx.bsp, grid, ctx.options.shBspx). Returns the stats.
+ShTraceStats lightGridSH(LightContext& ctx, Log& log);
 
 }  // namespace q3::light

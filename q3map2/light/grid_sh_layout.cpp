@@ -80,8 +80,9 @@ ShGridLayout setupGridSH(const LightContext& ctx, Log& log) {
     }
     const ShGridLayout layout = computeShGridLayout(requested, worldMins, worldMaxs);
     if (layout.clamped)
-        log.warning(strCat("SH grid cell size ", formatSize(requested), " raised to ", formatSize(vmax(requested, Vec3::splat(kMinShCellSize))),
-                           " (each axis at least ", kMinShCellSize, " units)"));
+        log.warning(strCat("SH grid cell size ", formatSize(requested), " raised to ",
+                           formatSize(vmax(requested, Vec3::splat(kMinShCellSize))), " (each axis at least ",
+                           kMinShCellSize, " units)"));
     if (layout.growSteps > 0)
         log.warning(strCat("SH grid cell size grown to ", formatSize(layout.size), " to keep lump 18 within 1 GiB (",
                            layout.numPoints(), " points)"));

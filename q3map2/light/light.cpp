@@ -8,6 +8,7 @@
 #include "light_stage.h"
 
 #include "grid_encode.h"
+#include "grid_sh.h"
 #include "light_text.h"
 #include "map_file.h"
 #include "phase_timer.h"
@@ -120,6 +121,10 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     if (!options.noGrid) {
         phase("light grid");
         lightGrid(ctx, log);
+    }
+    if (options.sh && !options.noGrid) {
+        phase("SH grid");  // SetupGridSH + TraceGridSH (grid_sh.h), stored as lump 18 or BSPX
+        lightGridSH(ctx, log);
     }
     phase("write");
     writeLitBsp(ctx, log);

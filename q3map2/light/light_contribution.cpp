@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bsp_tree.h"
 #include "sky_visibility.h"
@@ -54,11 +55,22 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
 
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
+    if (env.deferredRays) {
+        if (std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear))
+            env.deferredRays->push_back(*ray);
+        return {1, 1, 1};
+    }
     return env.scene->transmission(from, to, env.settings.ignoreNear);
 }
 
 Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
     if (!env.scene) return {1, 1, 1};
+    if (env.deferredRays) {
+        // Sun normals are unit vectors already (skyRay would normalise again).
+        env.deferredRays->push_back(ShadowRay{from, sun.normal, std::max(env.settings.ignoreNear, 0.0f),
+                                              std::numeric_limits<float>::infinity(), true, sun.skyIndex});
+        return {1, 1, 1};
+    }
     return env.scene->skyTransmission(from, sun.normal, sun.skyIndex, env.settings.ignoreNear);
 }
 

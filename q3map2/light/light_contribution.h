@@ -10,6 +10,7 @@
 
 #include "light_types.h"
 #include "lights.h"
+#include "trace_scene.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -41,6 +42,10 @@ struct LightingEnv {
     const BspTree* tree = nullptr;
     const SkyVisibility* skies = nullptr;
     ContributionSettings settings;
+    // When set (with a scene), shadow rays are not traced one by one: each contribution's ray is
+    // appended here and the contribution returned unoccluded; the caller traces the batch
+    // (TraceScene::traceBatch) and multiplies each contribution by its ray's transmission.
+    std::vector<ShadowRay>* deferredRays = nullptr;
 };
 
 // Fraction of the hemisphere above (point, normal) covered by the polygon, signed by facing

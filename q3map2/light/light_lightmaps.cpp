@@ -60,22 +60,44 @@ CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s) {
     return mesh;
 }
 
+// q3map2 MapSingleLuxel: a luxel in solid is moved by half a luxel along the lightmap's s and t
+// steps (never along the normal, so that a luxel under a detail brush lying on the surface stays
+// in solid and is filled from its neighbours instead of being lit from the far side of that brush).
+std::vector<Vec3> luxelNudges(Vec3 sStep, Vec3 tStep, int superSample) {
+    const Vec3 s = sStep * (0.5f / static_cast<float>(std::max(1, superSample)));
+    const Vec3 t = tStep * (0.5f / static_cast<float>(std::max(1, superSample)));
+    return {s, -s, t, -t, s + t, s - t, -s + t, -s - t};
+}
+std::vector<Vec3> luxelNudges(const std::array<Vec3, 2>& tangents, int superSample) {
+    return luxelNudges(tangents[0], tangents[1], superSample);
+}
+
+// Curved surfaces have no lightmap steps: q3map2 uses unit vectors perpendicular to the normal.
+std::array<Vec3, 2> curvedTangents(Vec3 normal) {
+    const Vec3 helper = std::fabs(normal.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 s = normalize(cross(normal, helper));
+    return {s, cross(normal, s)};
+}
+
 struct LuxelSampler {
     const LightContext& ctx;
     const LightingEnv& env;
     const RawLightmap& raw;
     Vec3 offset;
     bool twoSided;
-    // q3map2 nudges a luxel in solid by half a luxel before giving up on it.
-    std::vector<Vec3> nudges = nudgeOffsets(0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample),
-                                            0.5f * static_cast<float>(raw.sampleSize) / static_cast<float>(raw.superSample));
+    // Planar lightmaps: the in-plane nudges of every luxel (see luxelNudges).
+    std::vector<Vec3> planarNudges = raw.planar ? luxelNudges(raw.vecs[0], raw.vecs[1], raw.superSample)
+                                                : std::vector<Vec3>{};
 
     std::optional<SamplePoint> samplePoint(Vec3 origin, Vec3 normal) const {
         SamplePoint p{origin + offset, normal, -1, twoSided};
         if (ctx.tree && !ctx.bsp.nodes.empty()) {
             int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
             if (cluster < 0) {
-                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(p.origin, nudges, kLuxelEpsilon);
+                const std::vector<Vec3> nudges =
+                    raw.planar ? std::vector<Vec3>{} : luxelNudges(curvedTangents(normal), raw.superSample);
+                std::optional<Vec3> free =
+                    ctx.tree->nudgeOutOfSolid(p.origin, raw.planar ? planarNudges : nudges, kLuxelEpsilon);
                 if (!free) return std::nullopt;
                 p.origin = *free;
                 cluster = ctx.tree->clusterForPoint(p.origin);
@@ -83,6 +105,48 @@ struct LuxelSampler {
             p.cluster = cluster;
         }
         return p;
+    }
+
+    // lightAt for every sample point of `points` (nullopt = no light; `skip[i]` = leave dark), with
+    // the shadow rays of one light traced together as one batch.
+    void lightAll(const Light& light, const std::vector<std::optional<SamplePoint>>& points,
+                  const std::vector<uint8_t>& skip, std::vector<Vec3>& out, uint64_t& dropped) const {
+        constexpr size_t kStyledFlag = size_t{1} << (sizeof(size_t) * 8 - 1);
+        std::vector<ShadowRay> rays;
+        std::vector<size_t> rayLuxel;  // luxel of each ray; kStyledFlag marks a dropped styled light
+        LightingEnv deferred = env;
+        deferred.deferredRays = env.scene ? &rays : nullptr;
+        for (size_t i = 0; i < points.size(); ++i) {
+            out[i] = Vec3{};
+            if (!points[i] || skip[i]) continue;
+            const size_t before = rays.size();
+            std::optional<LightContribution> c = lightToSample(light, *points[i], deferred);
+            const bool traced = rays.size() > before;
+            if (!c) {
+                rays.resize(before);
+                continue;
+            }
+            if (c->style != 0) {
+                if (traced)
+                    rayLuxel.push_back(i | kStyledFlag);
+                else
+                    ++dropped;
+                continue;
+            }
+            out[i] = c->color;
+            if (traced) rayLuxel.push_back(i);
+        }
+        if (rays.empty()) return;
+        std::vector<Vec3> transmission(rays.size());
+        env.scene->traceBatch(rays, transmission);
+        for (size_t k = 0; k < rays.size(); ++k) {
+            const size_t i = rayLuxel[k] & ~kStyledFlag;
+            if (rayLuxel[k] & kStyledFlag) {
+                if (!(transmission[k] == Vec3{})) ++dropped;
+                continue;
+            }
+            out[i] *= transmission[k];
+        }
     }
 
     Vec3 lightAt(const Light& light, const SamplePoint& p, uint64_t& dropped) const {
@@ -225,17 +289,16 @@ RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const int maxLevel = std::max(0, o.lightSamples - 1);
     LuxelImage single(w, h);
     single.state = total.state;
+    std::vector<uint8_t> skip(points.size(), 0);  // -cheap: luxels already saturated
     for (const Light& light : ctx.lights) {
         if (bounds.empty() || !lightReachesBounds(light, bounds, env.settings.forceFast)) continue;
         if (!inFrontOfPlane(light, reach) || !visibleFromLightmap(light, reach, env.tree)) continue;
+        if (o.cheap)
+            for (size_t i = 0; i < points.size(); ++i)
+                skip[i] = total.color[i].x >= 255 && total.color[i].y >= 255 && total.color[i].z >= 255;
+        sampler.lightAll(light, points, skip, single.color, result.droppedStyled);
         bool any = false;
-        for (size_t i = 0; i < points.size(); ++i) {
-            single.color[i] = Vec3{};
-            if (!points[i]) continue;
-            if (o.cheap && total.color[i].x >= 255 && total.color[i].y >= 255 && total.color[i].z >= 255) continue;
-            single.color[i] = sampler.lightAt(light, *points[i], result.droppedStyled);
-            any = any || !(single.color[i] == Vec3{});
-        }
+        for (const Vec3& c : single.color) any = any || !(c == Vec3{});
         if (!any && maxLevel == 0) continue;
         if (maxLevel > 0) {
             // Adaptive sub-sampling where this light's lit/unlit state changes between neighbours.

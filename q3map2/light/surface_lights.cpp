@@ -93,16 +93,17 @@ void emitAreaLight(const AreaLightContext& ctx, const Winding& w) {
     ctx.out.push_back(light);
 
     if (fraction > 0 && !si.sky) {
-        // A dimmer copy facing back at the emitter, so that the wall around a light is lit.
-        Light splash = light;
-        splash.photons = light.photons * 7.0f * fraction;
-        splash.add = light.add * 7.0f * fraction;
-        splash.winding.assign(w.rbegin(), w.rend());
-        for (Vec3& p : splash.winding) p += ctx.normal * splashDistance;
+        // q3map2 2.5.17 (RadSubdivideDiffuseLight): a plain point light `backsplashDistance` in front
+        // of the emitter with `fraction` of its photons, so that the wall around a light is lit.
+        Light splash;
+        splash.type = LightType::Point;
+        splash.photons = light.photons * fraction;
         splash.origin = light.origin + ctx.normal * splashDistance;
-        splash.normal = -ctx.normal;
-        splash.planeDist = dot(splash.origin, splash.normal);
-        splash.twoSided = false;
+        splash.color = si.color;
+        splash.fade = 1;
+        splash.falloffTolerance = ctx.scales.falloffTolerance;
+        splash.fast = ctx.scales.fast || ctx.scales.fastPoint;
+        splash.style = light.style;
         ctx.out.push_back(splash);
     }
 }

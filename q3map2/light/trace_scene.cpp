@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <tuple>
 
 #include "light_text.h"
@@ -21,6 +22,7 @@ constexpr size_t kInlineHits = 48;
 
 // One translucent crossing. Trivially constructible: the inline list below is never cleared.
 struct TranslucentHit {
+    unsigned rayId;  // index of the ray in its batch (0 for single rays)
     float t;
     unsigned geomID;
     unsigned primID;
@@ -79,20 +81,28 @@ void collectTranslucentHits(const RTCFilterFunctionNArguments* args) {
         const float t = RTCRayN_tfar(args->ray, args->N, i);
         const Vec3 f = filterFactor(r, primID, u, v);
         if (maxComponent(f) <= 0) continue;  // fully opaque texel: a real hit
-        ctx->hits->add(TranslucentHit{t, geomID, primID, f.x, f.y, f.z});
+        const unsigned rayId = RTCRayN_id(args->ray, args->N, i);
+        ctx->hits->add(TranslucentHit{rayId, t, geomID, primID, f.x, f.y, f.z});
         args->valid[i] = 0;  // keep going through the surface
     }
 }
 
-// Order-independent product of the translucent crossings of one ray.
-Vec3 translucentProduct(HitList& hits) {
+// Every hit of a list, sorted by ray, distance, surface and triangle: the order no longer depends
+// on how Embree found them.
+std::vector<TranslucentHit> sortedHits(const HitList& hits) {
     std::vector<TranslucentHit> sorted(hits.inlineHits, hits.inlineHits + hits.count);
     sorted.insert(sorted.end(), hits.overflow.begin(), hits.overflow.end());
     std::sort(sorted.begin(), sorted.end(), [](const TranslucentHit& a, const TranslucentHit& b) {
+        if (a.rayId != b.rayId) return a.rayId < b.rayId;
         if (a.t != b.t) return a.t < b.t;
         if (a.geomID != b.geomID) return a.geomID < b.geomID;
         return a.primID < b.primID;
     });
+    return sorted;
+}
+
+// Product of the translucent crossings of one ray (its hits, sorted).
+Vec3 translucentProduct(std::span<const TranslucentHit> sorted) {
     // A ray through a shared triangle edge reports the same crossing of a surface twice (once per
     // triangle), and Embree may report one triangle more than once: such hits of one surface within
     // kSameCrossing of the previous counted one are the same crossing and count once.
@@ -184,7 +194,8 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             rec.st = s.st;
             rec.triangles.assign(ib, ib + numTris * 3);
             if (rec.st.size() < numVerts * 2) rec.st.clear();
-            rtcSetGeometryIntersectFilterFunction(geom, collectTranslucentHits);
+            // Shadow rays are occlusion queries: only the occlusion filter is ever called.
+            rtcSetGeometryOccludedFilterFunction(geom, collectTranslucentHits);
         }
         rtcCommitGeometry(geom);
         std::vector<Record>& records = rec.sky ? skyRecords_ : records_;
@@ -205,67 +216,157 @@ TraceScene::~TraceScene() {
     if (embree_->device) rtcReleaseDevice(embree_->device);
 }
 
-void TraceScene::countRay() const {
-    const int slot = tbb::this_task_arena::current_thread_index();  // -1 outside any arena
-    rays_[static_cast<size_t>(slot < 0 ? 0 : slot) % kRayCounters].rays.fetch_add(1, std::memory_order_relaxed);
-}
-
 uint64_t TraceScene::raysTraced() const {
     uint64_t total = 0;
     for (const RayCounter& c : rays_) total += c.rays.load(std::memory_order_relaxed);
     return total;
 }
 
-Vec3 TraceScene::occlusion(Vec3 from, Vec3 direction, float tnear, float tfar) const {
+std::optional<ShadowRay> TraceScene::segmentRay(Vec3 from, Vec3 to, float ignoreNear) {
+    const Vec3 d = to - from;
+    const float dist = length(d);
+    if (dist <= 0) return std::nullopt;
+    // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
+    const float tfar = dist - std::min(0.01f, dist * 0.5f);
+    if (tfar <= ignoreNear) return std::nullopt;
+    return ShadowRay{from, d / dist, std::max(ignoreNear, 0.0f), tfar, false, -1};
+}
+
+ShadowRay TraceScene::skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) {
+    return ShadowRay{from, normalize(direction), std::max(ignoreNear, 0.0f), std::numeric_limits<float>::infinity(),
+                     true, skyIndex};
+}
+
+Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear) const {
+    const std::optional<ShadowRay> ray = segmentRay(from, to, ignoreNear);
+    return ray ? traceOne(*ray) : Vec3{1, 1, 1};
+}
+
+Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) const {
+    return traceOne(skyRay(from, direction, skyIndex, ignoreNear));
+}
+
+void TraceScene::countRays(size_t n) const {
+    const int slot = tbb::this_task_arena::current_thread_index();  // -1 outside any arena
+    rays_[static_cast<size_t>(slot < 0 ? 0 : slot) % kRayCounters].rays.fetch_add(n, std::memory_order_relaxed);
+}
+
+// The single-ray form of traceBatch, without any allocation.
+Vec3 TraceScene::traceOne(const ShadowRay& r) const {
+    countRays(1);
+    RTCIntersectContext plain;
+    rtcInitIntersectContext(&plain);
+    float tfar = r.tfar;
+    if (r.toSky) {
+        if (skyRecords_.empty()) return {};
+        RTCRayHit rh{};
+        rh.ray = makeRay(r.from, r.direction, r.tnear, r.tfar);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(embree_->skyScene, &plain, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
+        if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
+        tfar = rh.ray.tfar;
+    } else if (!skyRecords_.empty()) {
+        RTCRay ray = makeRay(r.from, r.direction, r.tnear, tfar);
+        rtcOccluded1(embree_->skyScene, &plain, &ray);
+        if (ray.tfar < 0) return {};  // sky surfaces block point-light rays like walls
+    }
     HitList hits;
     RayContext ctx;
     rtcInitIntersectContext(&ctx.base);
     ctx.records = &records_;
     ctx.hits = &hits;
-    RTCRay ray = makeRay(from, direction, tnear, tfar);
+    RTCRay ray = makeRay(r.from, r.direction, r.tnear, tfar);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
-    return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(hits);
+    return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
 
-Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear) const {
-    Vec3 d = to - from;
-    float dist = length(d);
-    if (dist <= 0) return {1, 1, 1};
-    // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
-    float tfar = dist - std::min(0.01f, dist * 0.5f);
-    if (tfar <= ignoreNear) return {1, 1, 1};
-    countRay();
-    const Vec3 dir = d / dist;
-    const float tnear = std::max(ignoreNear, 0.0f);
-    if (!skyRecords_.empty()) {
-        // Sky surfaces block point-light rays like any wall.
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        RTCRay ray = makeRay(from, dir, tnear, tfar);
-        rtcOccluded1(embree_->skyScene, &ctx, &ray);
-        if (ray.tfar < 0) return {};
+void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out) const {
+    const size_t n = std::min(rays.size(), out.size());
+    if (n == 0) return;
+    if (n == 1) {
+        out[0] = traceOne(rays[0]);
+        return;
     }
-    return occlusion(from, dir, tnear, tfar);
+    countRays(n);
+    // Chunks small enough for the ray arrays to stay in cache and on the stack.
+    for (size_t first = 0; first < n; first += kBatchChunk) {
+        const size_t count = std::min(kBatchChunk, n - first);
+        traceChunk(rays.subspan(first, count), out.subspan(first, count));
+    }
 }
 
-Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) const {
-    countRay();
-    if (skyRecords_.empty()) return {};
-    const Vec3 dir = normalize(direction);
-    const float tnear = std::max(ignoreNear, 0.0f);
-    // The nearest sky surface along the ray must be one of this sun's sky...
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRayHit rh{};
-    rh.ray = makeRay(from, dir, tnear, std::numeric_limits<float>::infinity());
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(embree_->skyScene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes the world without meeting the sky
-    if (skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != skyIndex) return {};
-    // ...and nothing opaque may stand in front of it.
-    return occlusion(from, dir, tnear, rh.ray.tfar);
+void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out) const {
+    const size_t n = rays.size();
+    // Rays of one batch usually share a direction (one sun, many luxels) or an origin: Embree
+    // groups them into packets when told they are coherent.
+    RTCIntersectContext plain;
+    rtcInitIntersectContext(&plain);
+    plain.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (size_t i = 0; i < n; ++i) out[i] = Vec3{};
+
+    // 1. Sun rays: the nearest sky surface must belong to the sun's sky; it bounds the ray.
+    //    Point-light rays: no sky surface may lie on the segment. Rays carry their batch index
+    //    in `id`.
+    RTCRayHit toSkyBuffer[kBatchChunk];
+    RTCRay occlusionBuffer[kBatchChunk];
+    RTCRay probe[kBatchChunk];
+    size_t numToSky = 0, numOcclusion = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const ShadowRay& r = rays[i];
+        RTCRay ray = makeRay(r.from, r.direction, r.tnear, r.tfar);
+        ray.id = static_cast<unsigned>(i);
+        if (!r.toSky) {
+            occlusionBuffer[numOcclusion++] = ray;
+        } else if (!skyRecords_.empty()) {
+            RTCRayHit& rh = toSkyBuffer[numToSky++];
+            rh.ray = ray;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+    if (!skyRecords_.empty() && numOcclusion > 0) {
+        // Segments first meet the sky scene (few triangles); survivors are compacted in place.
+        std::copy(occlusionBuffer, occlusionBuffer + numOcclusion, probe);
+        rtcOccluded1M(embree_->skyScene, &plain, probe, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
+        size_t kept = 0;
+        for (size_t k = 0; k < numOcclusion; ++k)
+            if (probe[k].tfar >= 0) occlusionBuffer[kept++] = occlusionBuffer[k];
+        numOcclusion = kept;
+    }
+    if (numToSky > 0) {
+        rtcIntersect1M(embree_->skyScene, &plain, toSkyBuffer, static_cast<unsigned>(numToSky), sizeof(RTCRayHit));
+        for (size_t k = 0; k < numToSky; ++k) {
+            const RTCRayHit& rh = toSkyBuffer[k];
+            const int wanted = rays[rh.ray.id].skyIndex;
+            if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escapes without meeting the sky
+            if (wanted >= 0 && skyRecords_[rh.hit.geomID].skyIndex != wanted) continue;
+            occlusionBuffer[numOcclusion++] = rh.ray;  // tfar now ends at the sky surface
+        }
+    }
+
+    // 2. Every surviving ray against the other casters; translucent crossings are collected.
+    if (numOcclusion == 0) return;
+    HitList hits;
+    RayContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.flags = plain.flags;
+    ctx.records = &records_;
+    ctx.hits = &hits;
+    rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
+    for (size_t k = 0; k < numOcclusion; ++k)
+        if (occlusionBuffer[k].tfar >= 0) out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
+    if (hits.empty()) return;
+    const std::vector<TranslucentHit> sorted = sortedHits(hits);
+    for (size_t a = 0; a < sorted.size();) {
+        size_t b = a;
+        while (b < sorted.size() && sorted[b].rayId == sorted[a].rayId) ++b;
+        const unsigned i = sorted[a].rayId;
+        if (i < n && out[i].x > 0) out[i] = translucentProduct(std::span<const TranslucentHit>(&sorted[a], b - a));
+        a = b;
+    }
 }
 
 }  // namespace q3::light

@@ -17,6 +17,8 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "lights.h"
@@ -37,6 +39,17 @@ struct SceneSurface {
 
 struct TraceSceneOptions {
     bool patchShadows = false;  // -patchshadows: tessellated patches cast shadows
+};
+
+// One shadow ray: a segment [tnear, tfar] towards a light, or (toSky) a ray towards a sun that
+// must end on a sky surface of `skyIndex` (-1 = any sky).
+struct ShadowRay {
+    Vec3 from;
+    Vec3 direction;  // unit
+    float tnear = 0;
+    float tfar = 0;
+    bool toSky = false;
+    int skyIndex = -1;
 };
 
 class TraceScene {
@@ -60,6 +73,14 @@ public:
     // opaque surface met is a sky surface whose index matches `skyIndex` (-1 accepts any sky).
     Vec3 skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0) const;
 
+    // The ray transmission() traces from `from` to `to`; nullopt when nothing can block it.
+    static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0);
+    // The ray skyTransmission() traces.
+    static ShadowRay skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0);
+    // Transmission of many rays at once (out[i] for rays[i]), exactly as one call per ray would give,
+    // traced as Embree ray streams: cheaper per ray when the rays are coherent.
+    void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
+
     size_t casterCount() const { return records_.size() + skyRecords_.size(); }
     uint64_t raysTraced() const;
 
@@ -74,8 +95,11 @@ public:
     };
 
 private:
-    // Transmission along the segment [tnear, tfar] of the ray through the non-sky casters.
-    Vec3 occlusion(Vec3 from, Vec3 direction, float tnear, float tfar) const;
+
+    static constexpr size_t kBatchChunk = 256;
+    Vec3 traceOne(const ShadowRay& ray) const;
+    void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
+    void countRays(size_t n) const;
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
@@ -87,7 +111,6 @@ private:
         std::atomic<uint64_t> rays{0};
     };
     static constexpr size_t kRayCounters = 64;
-    void countRay() const;
     mutable std::array<RayCounter, kRayCounters> rays_;
 };
 

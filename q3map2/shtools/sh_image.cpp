@@ -37,7 +37,8 @@ Image renderProbeImage(const sh::GridRuntime& runtime, float z, int probePixels,
     const float radius = 0.5f * float(cell) - 0.5f;
     for (int y = 0; y < by; ++y)
         for (int x = 0; x < bx; ++x) {
-            const float position[3] = {grid.mins[0] + float(x) * grid.size[0], grid.mins[1] + float(y) * grid.size[1], z};
+            const float position[3] = {grid.mins[0] + float(x) * grid.size[0],
+                                       grid.mins[1] + float(y) * grid.size[1], z};
             const sh::GridPointSH probe = runtime.sample(position);
             const int left = x * cell;
             const int top = (by - 1 - y) * cell;  // north (+Y) up

@@ -33,7 +33,8 @@ ProbeReport probeBsp(std::span<const uint8_t> bspImage, const float position[3],
     if (std::string err = runtime.loadFromBsp(bspImage.data(), bspImage.size(), name); !err.empty())
         throw bsp::BspError(err);
     if (runtime.source() != sh::GridSource::Lump18 && runtime.source() != sh::GridSource::Bspx)
-        throw bsp::BspError(name + ": no SH light grid (neither lump 18 nor the BSPX lump LIGHTGRID_SH): run -light -sh");
+        throw bsp::BspError(name +
+                            ": no SH light grid (neither lump 18 nor the BSPX lump LIGHTGRID_SH): run -light -sh");
     report.source = runtime.source();
     report.sh = runtime.sample(position);
     report.shFaces = sh::toAmbientCube(report.sh);

@@ -93,30 +93,35 @@ std::vector<fs::path> temporariesOf(const fs::path& target) {
     return out;
 }
 
-class CrashSafety : public ::testing::TestWithParam<CrashScenario> {};
+// What repeated kills left behind.
+struct KillOutcome {
+    int keptOld = 0;            // the target still held the old bytes
+    int gotNew = 0;             // it held the new bytes
+    int torn = 0;               // it held anything else
+    int withLeftovers = 0;      // temporaries were left beside it
+    int badCleanups = 0;        // removeStaleTemporaries miscounted or left some
+};
 
-TEST_P(CrashSafety, KilledWriterLeavesOldOrNewFileAndRemovableTemporaries) {
-    constexpr int kKills = 50;
-    const CrashScenario& scenario = GetParam();
-    const fs::path dir = q3::test::tempDir();
+// Runs `scenario` to completion once (its output is the new content), then `kills` times: restores
+// the old content, starts the command and kills it after a random delay (fixed seed) spread over
+// two complete runs, so kills land both before the first rename and inside later writes.
+KillOutcome killRepeatedly(const CrashScenario& scenario, int kills, const fs::path& dir) {
     const fs::path target = scenario.prepare(dir);
     const std::vector<uint8_t> oldBytes = q3::readFileBytes(target);
 
-    // One complete run gives the new content and how long a write takes.
     const auto start = Clock::now();
     const int status = waitFor(spawn(scenario.command(target, false)));
     const auto fullRun = Clock::now() - start;
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << scenario.name << " failed on its own";
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error(scenario.name + " failed on its own");
     const std::vector<uint8_t> newBytes = q3::readFileBytes(target);
-    ASSERT_NE(oldBytes, newBytes) << "the command must change the file for the test to mean anything";
-    ASSERT_TRUE(temporariesOf(target).empty()) << "a completed write left a temporary";
+    if (oldBytes == newBytes) throw std::runtime_error(scenario.name + " did not change the file");
+    if (!temporariesOf(target).empty()) throw std::runtime_error(scenario.name + ": a completed write left a temporary");
 
-    // Kill moments spread over two complete runs: before the first rename, and inside later writes.
     std::mt19937 random(20261121);
     const auto fullRunUs = std::chrono::duration_cast<std::chrono::microseconds>(fullRun).count();
     std::uniform_int_distribution<long long> delayUs(0, 2 * std::max<long long>(fullRunUs, 1000));
-    int keptOld = 0, gotNew = 0, killsWithLeftovers = 0;
-    for (int kill = 0; kill < kKills; ++kill) {
+    KillOutcome outcome;
+    for (int kill = 0; kill < kills; ++kill) {
         q3::writeFileAtomic(target, oldBytes);
         const pid_t pid = spawn(scenario.command(target, true));
         std::this_thread::sleep_for(std::chrono::microseconds(delayUs(random)));
@@ -124,26 +129,47 @@ TEST_P(CrashSafety, KilledWriterLeavesOldOrNewFileAndRemovableTemporaries) {
         waitFor(pid);
 
         const std::vector<uint8_t> now = q3::readFileBytes(target);
-        const bool isOld = now == oldBytes, isNew = now == newBytes;
-        ASSERT_TRUE(isOld || isNew) << scenario.name << ": kill " << kill << " left a file of " << now.size()
-                                    << " bytes that is neither the old nor the new content";
-        keptOld += isOld;
-        gotNew += isNew;
+        if (now == oldBytes) ++outcome.keptOld;
+        else if (now == newBytes) ++outcome.gotNew;
+        else ++outcome.torn;
 
         const std::vector<fs::path> leftovers = temporariesOf(target);
-        killsWithLeftovers += !leftovers.empty();
-        EXPECT_EQ(q3::removeStaleTemporaries(target), int(leftovers.size())) << "kill " << kill;
-        EXPECT_TRUE(temporariesOf(target).empty()) << "kill " << kill << ": removeStaleTemporaries left files";
+        outcome.withLeftovers += !leftovers.empty();
+        if (q3::removeStaleTemporaries(target) != int(leftovers.size()) || !temporariesOf(target).empty())
+            ++outcome.badCleanups;
     }
-    std::printf("%s: %d kills, %d kept the old file, %d had the new one, %d left temporaries\n",
-                scenario.name.c_str(), kKills, keptOld, gotNew, killsWithLeftovers);
-    // Over 50 kills spread across whole writes, some must have interrupted a write in progress;
-    // otherwise the test did not exercise what it is for.
-    EXPECT_GT(killsWithLeftovers, 0) << "no kill interrupted a write; the delays do not cover the writes";
+    std::printf("%s: %d kills: %d kept the old file, %d had the new one, %d torn, %d left temporaries\n",
+                scenario.name.c_str(), kills, outcome.keptOld, outcome.gotNew, outcome.torn, outcome.withLeftovers);
+    return outcome;
+}
+
+class CrashSafety : public ::testing::TestWithParam<CrashScenario> {};
+
+TEST_P(CrashSafety, KilledWriterLeavesOldOrNewFileAndRemovableTemporaries) {
+    const KillOutcome outcome = killRepeatedly(GetParam(), 50, q3::test::tempDir());
+    EXPECT_EQ(outcome.torn, 0) << "a kill left a file that is neither the old nor the new content";
+    EXPECT_EQ(outcome.badCleanups, 0) << "removeStaleTemporaries did not remove exactly the leftovers";
+    // Some kills must have interrupted a write in progress, or the test did not exercise its case.
+    EXPECT_GT(outcome.withLeftovers, 0) << "no kill interrupted a write; the delays do not cover the writes";
 }
 
 INSTANTIATE_TEST_SUITE_P(Commands, CrashSafety, ::testing::ValuesIn(crashScenarios()),
                          [](const ::testing::TestParamInfo<CrashScenario>& info) { return info.param.name; });
+
+// Negative control: the same kills against a writer that rewrites the target in place must tear it,
+// so a passing scenario above means something.
+TEST(CrashSafetyControl, InPlaceWriterIsCaught) {
+    CrashScenario direct = crashScenarios().front();
+    direct.name = "in_place_writer";
+    const auto atomicCommand = direct.command;
+    direct.command = [atomicCommand](const fs::path& target, bool loop) {
+        std::vector<std::string> argv = atomicCommand(target, loop);
+        argv.push_back("direct");
+        return argv;
+    };
+    const KillOutcome outcome = killRepeatedly(direct, 20, q3::test::tempDir());
+    EXPECT_GT(outcome.torn, 0) << "killing an in-place writer never tore the file: the kill timing is off";
+}
 
 // The file the helper writes is a valid BSP, so the scenario checks a real writeBsp output.
 TEST(CrashSafetyHelper, WritesAValidBsp) {

@@ -63,7 +63,10 @@ RealMapRun runPipeline() {
     run.plainFile = readFileBytes(ctx.bspPath);
     ctx.entities = entities;
     ctx.commandLine = "-light -fast -nolm -sh maps/oacmpdm1.bsp";
-    attachGridSH(ctx.bsp, run.grid, false);
+    ctx.options.sh = true;
+    const ShTraceStats again = lightGridSH(ctx, log);  // the one-call form the stage uses
+    if (again.inSolid != run.stats.inSolid || ctx.bsp.shGrid != sh::encodeGridLump(run.grid))
+        ADD_FAILURE() << "lightGridSH differs from setupGridSH + traceGridSH";
     ctx.bspPath = maps / "oacmpdm1_sh.bsp";
     writeLitBsp(ctx, log);
     run.shFile = readFileBytes(ctx.bspPath);

@@ -109,7 +109,9 @@ TEST(ShTrace, RedAndBlueOnOppositeSidesLegacyCannot) {
     std::vector<LightContribution> contributions;
     gatherGridLight(ctx->lights, {0, 0, 0}, -1, env, contributions);
     const GridSample legacy = accumulateGridSample(contributions, {}, GridOptions{});
-    auto legacyAt = [&](Vec3 n) { return (legacy.ambient + legacy.directed * std::max(0.0f, dot(n, legacy.direction))) / 255.0f; };
+    auto legacyAt = [&](Vec3 n) {
+        return (legacy.ambient + legacy.directed * std::max(0.0f, dot(n, legacy.direction))) / 255.0f;
+    };
     EXPECT_LT(legacyAt({0, 1, 0}).z, 0.3 * blue);
     EXPECT_GT(plusY.b, 0.9 * blue);
 }
@@ -200,7 +202,8 @@ TEST(ShTrace, SunThroughSkyAndJitteredSamples) {
         if (layout.pointOrigin(1, y, 0).y < 0) {
             sh::SH9Color expected;
             for (const Light& sun : ctx->lights)
-                sh::addDirectionalIrradiance(expected, {sun.normal.x, sun.normal.y, sun.normal.z}, {100 / 255.0, 100 / 255.0, 100 / 255.0});
+                sh::addDirectionalIrradiance(expected, {sun.normal.x, sun.normal.y, sun.normal.z},
+                                             {100 / 255.0, 100 / 255.0, 100 / 255.0});
             for (int k = 0; k < 9; ++k) EXPECT_NEAR(v.c[k][0], expected.c[k][0], 1e-5) << "coefficient " << k;
             EXPECT_NEAR(up, 2 * 1.0625 * 100 / 255.0, 0.01);
         } else {
@@ -333,6 +336,92 @@ TEST(ShTrace, SameBytesWithOneAndTwoThreads) {
         second = sh::encodeGridLump(traceGridSH(*ctx, layout, log.log));
     }
     EXPECT_EQ(first, second);
+}
+
+TEST(ShTrace, ManyLightsStayWithinTheTruncationBounds) {
+    // 64 coloured lights spread over a sphere (Fibonacci lattice) around one grid point.
+    auto ctx = makeContext({0, 0, 0}, {0, 0, 0}, 8);
+    const double golden = sh::kPi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < 64; ++i) {
+        const double z = 1.0 - (i + 0.5) * 2.0 / 64.0, r = std::sqrt(1 - z * z), a = golden * i;
+        const Vec3 dir{float(r * std::cos(a)), float(r * std::sin(a)), float(z)};
+        const Vec3 color{0.5f + 0.5f * dir.x * dir.x, 0.6f, 0.4f + 0.6f * float(i % 3) / 2};
+        ctx->lights.push_back(pointLight(dir * (150.0f + float(i % 5) * 20), 40, color));
+    }
+    test::CapturingLog log;
+    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    const sh::SH9Color value = pointSH(grid, 0);
+    const LightingEnv env = gridLightingEnv(*ctx);
+    std::vector<LightContribution> contributions;
+    gatherGridLight(ctx->lights, {0, 0, 0}, -1, env, contributions);
+    ASSERT_EQ(contributions.size(), 64u);
+    double sumAbs = 0;
+    for (const LightContribution& c : contributions) sumAbs += c.color.x / 255.0;
+    double errSum = 0, truthSum = 0, maxErr = 0;
+    for (const Vec3d& n : randomNormals(2000, 5)) {
+        double truth = 0;
+        for (const LightContribution& c : contributions) truth += std::max(0.0, dotd(n, c.direction)) * c.color.x / 255.0;
+        const double err = std::abs(sh::evalIrradiance(value, n).r - truth);
+        maxErr = std::max(maxErr, err);
+        errSum += err;
+        truthSum += truth;
+    }
+    EXPECT_LE(maxErr, 0.0938 * sumAbs + 1e-6);
+    EXPECT_LE(errSum / 2000, 0.0230 * sumAbs + 1e-6);
+    EXPECT_LT(errSum / truthSum, 0.03) << "mean relative error of a smooth environment";
+}
+
+TEST(ShTrace, ControlledLightsUseTheirIncidenceProjection) {
+    Light l = pointLight({0, 0, 100}, 1, {1, 0.5f, 0.5f});
+    ControlledParams p;
+    p.dotProductWeight = 0.3f;
+    p.falloffEnd = 400;
+    l.controlled = p;
+    const LightingEnv env;
+    const Vec3 point{30, -20, 0};
+    const std::optional<LightContribution> c = lightToGridPoint(l, point, -1, env);
+    ASSERT_TRUE(c);
+    sh::SH9Color value;
+    ASSERT_TRUE(addLightToGridPointSH(value, l, point, -1, env));
+    const sh::Rgb k{c->color.x / 255.0, c->color.y / 255.0, c->color.z / 255.0};
+    const Vec3d dir{c->direction.x, c->direction.y, c->direction.z};
+    const sh::SH9Color expected = sh::projectControlledIncidence(dir, k, 0.3);
+    for (int i = 0; i < 9; ++i)
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(value.c[i][ch], expected.c[i][ch], 1e-6) << i;
+    // Not the clamped cosine: with w < 1 the side facing the light is flatter.
+    const sh::SH9Color cosine = sh::projectDirectionalIrradiance(dir, k);
+    EXPECT_GT(std::abs(value.c[0][0] - cosine.c[0][0]), 0.1 * cosine.c[0][0]);
+    // Suns of the controlled model force w = 1: the plain directional projection.
+    Light sun;
+    sun.type = LightType::Sun;
+    sun.normal = normalize(Vec3{1, 1, 2});
+    ControlledParams sunParams;
+    sunParams.dotProductWeight = 0.2f;
+    sun.controlled = sunParams;
+    sh::SH9Color sunValue;
+    ASSERT_TRUE(addLightToGridPointSH(sunValue, sun, point, -1, env));
+    const sh::SH9Color sunExpected = sh::projectDirectionalIrradiance({sun.normal.x, sun.normal.y, sun.normal.z},
+                                                                      {1, 1, 1});
+    for (int i = 0; i < 9; ++i) EXPECT_NEAR(sunValue.c[i][0], sunExpected.c[i][0], 1e-6) << i;
+}
+
+TEST(ShTrace, StyledAndGridlessLightsStayOut) {
+    auto ctx = makeContext({0, 0, 0}, {64, 0, 0}, 32);
+    ctx->world.ambient = {10, 10, 10};
+    Light styled = pointLight({32, 0, 50}, 300);
+    styled.style = 1;  // switchable light: not in the IBSP grids
+    Light gridless = pointLight({32, 0, -50}, 300);
+    gridless.affectsGrid = false;  // spawnflags 16
+    ctx->lights = {styled, gridless};
+    test::CapturingLog log;
+    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    sh::SH9Color ambientOnly;
+    applyAmbientAndFloor(ambientOnly, {10, 10, 10}, {});
+    const sh::GridPointSH expected = sh::toGridPoint(ambientOnly);
+    for (const sh::GridPointSH& p : grid.points) EXPECT_EQ(std::memcmp(&p, &expected, sizeof(p)), 0);
+    ctx->lights[0].style = 0;
+    const sh::GridSH lit = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    EXPECT_GT(lit.points[1].coeffs[2][0], 0.1f);  // from above once it is style 0
 }
 
 TEST(ShTrace, AttachAsLump18OrBspx) {
