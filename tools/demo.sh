@@ -17,8 +17,10 @@ cp "$bsp" "$work/$map.bsp"
 [ -z "$src" ] || cp "$src" "$work/$map.map"
 
 game="-fs_basepath $cache/openarena -fs_game baseoa"
-echo "== $q3map2 $game -light -fast $work/$map.bsp"
-"$q3map2" $game -light -fast "$work/$map.bsp"
+echo "== $q3map2 $game -light -fast -sh $work/$map.bsp"
+"$q3map2" $game -light -fast -sh "$work/$map.bsp"
+echo "== $q3map2 -shprobe $work/$map.bsp 0 0 64"
+"$q3map2" -shprobe "$work/$map.bsp" 0 0 64
 echo "== $q3map2 -info $work/$map.bsp"
 "$q3map2" -info "$work/$map.bsp"
 echo
