@@ -114,6 +114,8 @@ struct LuxelSampler {
         constexpr size_t kStyledFlag = size_t{1} << (sizeof(size_t) * 8 - 1);
         std::vector<ShadowRay> rays;
         std::vector<size_t> rayLuxel;  // luxel of each ray; kStyledFlag marks a dropped styled light
+        rays.reserve(points.size());
+        rayLuxel.reserve(points.size());
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
         for (size_t i = 0; i < points.size(); ++i) {
@@ -193,12 +195,18 @@ struct LightmapReach {
     std::vector<int> clusters;  // sorted, unique; empty = unknown
     bool planar = false;
     bool twoSided = false;
+    bool flatNormals = false;  // every luxel normal is exactly the plane normal (no phong shading)
     Vec3 planeNormal;
     float planeDist = 0;
 };
 
 bool inFrontOfPlane(const Light& light, const LightmapReach& r) {
-    if (!r.planar || r.twoSided || light.type == LightType::Sun) return true;
+    if (!r.planar || r.twoSided) return true;
+    if (light.type == LightType::Sun) {
+        // A sun below the plane lights no luxel whose normal is the plane's (Lambert term <= 0).
+        const bool lambert = light.angleAttenuation || light.controlled;
+        return !(r.flatNormals && lambert && dot(r.planeNormal, light.normal) <= 0);
+    }
     if (light.type == LightType::Area) {
         for (const Vec3& p : light.winding)
             if (dot(p, r.planeNormal) - r.planeDist > -1.0f) return true;
@@ -278,6 +286,9 @@ RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     reach.twoSided = shader.twoSided;
     reach.planar = raw.planar && surface.surfaceType == bsp::MST_PLANAR;
     if (reach.planar) {
+        reach.flatNormals = true;
+        for (size_t i = 0; i < points.size(); ++i)
+            if (points[i] && !(points[i]->normal == raw.planeNormal)) reach.flatNormals = false;
         reach.planeNormal = raw.planeNormal;
         reach.planeDist = raw.planeDist + dot(offset, raw.planeNormal);
     }

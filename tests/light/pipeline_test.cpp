@@ -135,6 +135,27 @@ TEST(LightPipeline, FloorLuxelsMatchInverseSquareAndShadow) {
     EXPECT_GT(shadowedCount, 0);
 }
 
+TEST(LightPipeline, CompensateDividesAfterTheClamp) {
+    // q3map2's ColorToBytes clamps to 255 first and divides by -compensate last, so with
+    // -compensate 2 a saturated luxel is 127 and no lightmap byte exceeds it (the signature of the
+    // shipped OpenArena lightmaps, whose bytes never exceed 127).
+    bsp::Bsp room = makeRoom();
+    std::vector<bsp::Entity> ents = bsp::parseEntities(room.entities, "room");
+    ents[1].set("light", "5000");  // saturates the floor under it
+    room.entities = bsp::unparseEntities(ents);
+    const auto path = writeRoom(test::tempDir(), room);
+    LightOptions options;
+    options.compensate = 2.0f;
+    ASSERT_EQ(runStage(path, 1, options), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    ASSERT_FALSE(lit.lightmaps.empty());
+    uint8_t brightest = 0;
+    for (int y = 0; y < lit.surfaces[0].lightmapHeight; ++y)
+        for (int x = 0; x < lit.surfaces[0].lightmapWidth; ++x)
+            for (uint8_t c : texel(lit, 0, x, y)) brightest = std::max(brightest, c);
+    EXPECT_EQ(brightest, 127);
+}
+
 TEST(LightPipeline, GridPointMatchesEncoding) {
     const auto path = writeRoom(test::tempDir(), makeRoom());
     ASSERT_EQ(runStage(path, 1), 0);

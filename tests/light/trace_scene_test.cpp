@@ -155,5 +155,46 @@ TEST(TraceScene, AlphaShadowWithoutImageIsOpaque) {
     EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{0, 0, 0}));
 }
 
+TEST(TraceScene, BatchMatchesSingleRays) {
+    // Sky ceiling (index 0) with an opaque beam and a tinted grate below it: a batch of sun and
+    // point-light rays, longer than one internal chunk, gives exactly what single rays give.
+    LightingShader sky, grate;
+    sky.sky = true;
+    LightImage tint = solidImage(255, 128, 0, 64);
+    grate.alphaShadow = true;
+    grate.lightFilter = true;
+    grate.lightImage = &tint;
+    std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0),
+                                quad({-40, -1000, 300}, {80, 0, 0}, {0, 2000, 0}),
+                                quad({100, -1000, 200}, {200, 0, 0}, {0, 2000, 0}, &grate)};
+    TraceScene scene(s, {});
+    std::vector<ShadowRay> rays;
+    for (int i = 0; i < 700; ++i) {
+        const Vec3 from{static_cast<float>(i % 70) * 6.0f - 200.0f, static_cast<float>(i / 70) * 10.0f, 0};
+        if (i % 3 == 0) {
+            if (auto r = TraceScene::segmentRay(from, from + Vec3{10, 0, 400}, 0)) rays.push_back(*r);
+        } else {
+            rays.push_back(TraceScene::skyRay(from, Vec3{0.1f * static_cast<float>(i % 5), 0, 1}, i % 7 == 0 ? 1 : 0));
+        }
+    }
+    std::vector<Vec3> batch(rays.size());
+    scene.traceBatch(rays, batch);
+    int lit = 0, tinted = 0, blocked = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const ShadowRay& r = rays[i];
+        const Vec3 single = r.toSky ? scene.skyTransmission(r.from, r.direction, r.skyIndex)
+                                    : scene.transmission(r.from, r.from + r.direction * (r.tfar + 0.01f));
+        EXPECT_NEAR(batch[i].x, single.x, 1e-6f) << "ray " << i;
+        EXPECT_NEAR(batch[i].y, single.y, 1e-6f) << "ray " << i;
+        lit += batch[i] == Vec3{1, 1, 1};
+        tinted += batch[i].x > 0 && batch[i].x < 1;
+        blocked += batch[i] == Vec3{};
+    }
+    // Every kind of outcome occurs.
+    EXPECT_GT(lit, 0);
+    EXPECT_GT(tinted, 0);
+    EXPECT_GT(blocked, 0);
+}
+
 }  // namespace
 }  // namespace q3::light

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace q3::test {
 namespace fs = std::filesystem;
@@ -81,8 +82,17 @@ fs::path realBsp(const std::string& mapName) {
 std::vector<fs::path> allShaderScripts() { return findFiles(dataCache() / "loose", ".shader", "scripts"); }
 
 fs::path tempDir() {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "global";
+    const ::testing::UnitTest* unit = ::testing::UnitTest::GetInstance();
+    const ::testing::TestInfo* info = unit->current_test_info();
+    std::string name;
+    if (info) {
+        name = std::string(info->test_suite_name()) + "." + info->name();
+    } else {
+        // Suite-level set-up: ctest may run several tests of the suite at once, each in its own
+        // process, so the folder is made unique per process.
+        const ::testing::TestSuite* suite = unit->current_test_suite();
+        name = std::string(suite ? suite->name() : "global") + ".setup-" + std::to_string(::getpid());
+    }
     std::replace(name.begin(), name.end(), '/', '_');
     fs::path dir = fs::path(Q3MAP_BINARY_DIR) / "test-tmp" / name;
     fs::remove_all(dir);
