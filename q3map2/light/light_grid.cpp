@@ -75,11 +75,6 @@ void lightGrid(LightContext& ctx, Log& log) {
     auto body = [&](const tbb::blocked_range<int>& range) {
         progress.advance(range.size());
         std::vector<LightContribution> contributions;
-        std::vector<ShadowRay> rays;
-        std::vector<size_t> rayContribution;  // contribution of each ray
-        std::vector<Vec3> transmission;
-        LightingEnv deferred = env;
-        deferred.deferredRays = &rays;
         for (int i = range.begin(); i != range.end(); ++i) {
             Vec3 origin = layout.pointOrigin(i);
             int cluster = -1;
@@ -102,34 +97,13 @@ void lightGrid(LightContext& ctx, Log& log) {
                 cluster >= 0 && static_cast<size_t>(cluster) < lightsByCluster.size()
                     ? lightsByCluster[static_cast<size_t>(cluster)]
                     : allLights;
-            if (ctx.options.cheapGrid || !env.scene) {
-                // -cheapgrid stops at the first saturating light: its rays are traced one by one.
-                for (uint32_t lightIndex : candidates) {
-                    const Light& light = ctx.lights[lightIndex];
-                    std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, env);
-                    if (!c) continue;
-                    contributions.push_back(*c);
-                    total += c->color;
-                    if (ctx.options.cheapGrid && total.x >= 255 && total.y >= 255 && total.z >= 255) break;
-                }
-            } else {
-                // Every light's shadow ray from this point traced as one batch, then applied.
-                rays.clear();
-                rayContribution.clear();
-                for (uint32_t lightIndex : candidates) {
-                    const size_t before = rays.size();
-                    std::optional<LightContribution> c = lightToGridPoint(ctx.lights[lightIndex], origin, cluster, deferred);
-                    if (!c) {
-                        rays.resize(before);
-                        continue;
-                    }
-                    if (rays.size() > before) rayContribution.push_back(contributions.size());
-                    contributions.push_back(*c);
-                }
-                transmission.resize(rays.size());
-                env.scene->traceBatch(rays, transmission);
-                for (size_t k = 0; k < rays.size(); ++k) contributions[rayContribution[k]].color *= transmission[k];
-                std::erase_if(contributions, [](const LightContribution& c) { return c.color == Vec3{}; });
+            for (uint32_t lightIndex : candidates) {
+                const Light& light = ctx.lights[lightIndex];
+                std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, env);
+                if (!c) continue;
+                contributions.push_back(*c);
+                total += c->color;
+                if (ctx.options.cheapGrid && total.x >= 255 && total.y >= 255 && total.z >= 255) break;
             }
             const GridSample sample = accumulateGridSample(contributions, ctx.world.ambient, gridOptions);
             points[static_cast<size_t>(i)] = encodeGridPoint(sample, gridOptions, ctx.color);

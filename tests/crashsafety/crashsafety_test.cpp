@@ -6,18 +6,22 @@
 // (q3::bsp::writeBsp of a 12 MB BSP in a loop), and the lighting stage (`q3map2 -light -fast -sh`
 // relighting a small map in place). Further commands are further entries of crashScenarios().
 #include "bspfile.h"
-#include "synthetic_bsp.h"
 #include "file_io.h"
+#include "synthetic_bsp.h"
 #include "test_data.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <fcntl.h>
 #include <functional>
 #include <random>
 #include <spawn.h>
+#include <stdexcept>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
@@ -123,7 +127,7 @@ struct KillOutcome {
 
 // Runs `scenario` to completion once (its output is the new content), then `kills` times: restores
 // the old content, starts the command and kills it after a random delay (fixed seed) spread over
-// two complete runs, so kills land both before the first rename and inside later writes.
+// three complete runs, so kills land both before the first rename and inside later writes.
 KillOutcome killRepeatedly(const CrashScenario& scenario, int kills, const fs::path& dir) {
     const fs::path target = scenario.prepare(dir);
     const std::vector<uint8_t> oldBytes = q3::readFileBytes(target);
@@ -138,7 +142,8 @@ KillOutcome killRepeatedly(const CrashScenario& scenario, int kills, const fs::p
 
     std::mt19937 random(20261121);
     const auto fullRunUs = std::chrono::duration_cast<std::chrono::microseconds>(fullRun).count();
-    std::uniform_int_distribution<long long> delayUs(0, 2 * std::max<long long>(fullRunUs, 1000));
+    // Three runs' worth rather than two leaves room for a machine that slows down under load.
+    std::uniform_int_distribution<long long> delayUs(0, 3 * std::max<long long>(fullRunUs, 1000));
     KillOutcome outcome;
     for (int kill = 0; kill < kills; ++kill) {
         q3::writeFileAtomic(target, oldBytes);

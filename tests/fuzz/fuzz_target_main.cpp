@@ -1,5 +1,7 @@
 // The libFuzzer harness, compiled once per target with Q3_FUZZ_ENTRY naming its entry
-// (fuzz_entries.h). The scratch folder is made under $TMPDIR on start and removed on a normal exit.
+// (fuzz_entries.h). The scratch folder is made under $TMPDIR on start and removed when the process
+// ends normally (libFuzzer finishes with exit(), which destroys statics); tools/fuzz.sh points
+// TMPDIR at a folder it removes itself, for runs that end in a crash.
 #include "fuzz_entries.h"
 
 #include <cstdio>
@@ -14,19 +16,10 @@
 
 namespace {
 
-struct Harness {
-    const q3::fuzz::FuzzEntry* entry = nullptr;
-    q3::fuzz::FuzzContext context;
-};
-
-void removeScratch();
-
-// libFuzzer's C interface leaves no other place for the per-process state than a static.
-Harness& harness() {
-    static Harness instance = [] {
-        Harness h;
-        h.entry = q3::fuzz::findFuzzEntry(Q3_FUZZ_ENTRY);
-        if (!h.entry) {
+class Harness {
+public:
+    Harness() : entry_(q3::fuzz::findFuzzEntry(Q3_FUZZ_ENTRY)) {
+        if (!entry_) {
             std::fprintf(stderr, "fuzz target: no entry named '%s'\n", Q3_FUZZ_ENTRY);
             std::abort();
         }
@@ -36,16 +29,26 @@ Harness& harness() {
             std::perror("fuzz target: cannot create a scratch folder");
             std::abort();
         }
-        h.context.scratch = pattern;
-        std::atexit(removeScratch);
-        return h;
-    }();
-    return instance;
-}
+        context_.scratch = pattern;
+    }
+    ~Harness() {
+        std::error_code ec;
+        std::filesystem::remove_all(context_.scratch, ec);
+    }
+    Harness(const Harness&) = delete;
+    Harness& operator=(const Harness&) = delete;
 
-void removeScratch() {
-    std::error_code ec;
-    std::filesystem::remove_all(harness().context.scratch, ec);
+    void run(const uint8_t* data, size_t size) const { entry_->run(std::span<const uint8_t>(data, size), context_); }
+
+private:
+    const q3::fuzz::FuzzEntry* entry_;
+    q3::fuzz::FuzzContext context_;
+};
+
+// libFuzzer's C interface leaves no other place for the per-process state than a static.
+const Harness& harness() {
+    static const Harness instance;
+    return instance;
 }
 
 }  // namespace
@@ -56,7 +59,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    Harness& h = harness();
-    h.entry->run(std::span<const uint8_t>(data, size), h.context);
+    harness().run(data, size);
     return 0;
 }
