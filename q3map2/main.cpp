@@ -11,13 +11,16 @@
 
 #include "json_stage.h"
 #include "light_stage.h"
+#include "lightmap_export.h"
 
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +40,9 @@ std::vector<q3::cli::StageDescription> stageList() {
         } else if (s.name == "-light") {
             s.available = true;
             s.options = q3::cli::describe(q3::light::lightOptionTable());
+        } else if (s.name == "-export" || s.name == "-import") {
+            s.available = true;
+            s.options = q3::cli::describe(q3::light::pictureStageOptionTable());
         } else if (s.name == "-json") {
             s.available = true;
             s.options = q3::cli::describe(q3::json::jsonOptionTable());
@@ -46,6 +52,11 @@ std::vector<q3::cli::StageDescription> stageList() {
                       q3::cli::describe(q3::shtools::shProbeOptionTable())});
     stages.push_back({"-shimage", "SH grid picture", "<filename.bsp> OUT.png [Z]", true,
                       q3::cli::describe(q3::shtools::shImageOptionTable())});
+    stages.push_back({"-shcubemap",
+                      "SH cubemap projection (faces seen from inside, BSP axes, Z up; right x down = outward: "
+                      "+X right -Y down -Z, -X right +Y down -Z, +Y right +X down -Z, -Y right -X down -Z, "
+                      "+Z right -Y down +X, -Z right -Y down -X)",
+                      "PX NX PY NY PZ NZ", true, q3::cli::describe(q3::shtools::shCubemapOptionTable())});
     return stages;
 }
 
@@ -63,6 +74,14 @@ std::vector<std::string> takePositionalViewerArgs(std::vector<std::string> args,
     return args;
 }
 
+// `-help [stage]` comes first on the command line (any case, also --help and -h).
+bool isHelpRequest(const std::vector<std::string>& args) {
+    if (args.empty()) return false;
+    std::string first = args.front();
+    std::transform(first.begin(), first.end(), first.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return first == "-help" || first == "--help" || first == "-h";
+}
+
 template <class Options>
 Options parseStageOptions(const q3::cli::OptionTable<Options>& table, const q3::cli::CommandLine& line,
                           const std::vector<q3::cli::StageDescription>& stages) {
@@ -76,11 +95,20 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
              const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
              q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image);
 
-int run(const std::vector<std::string>& rawArgs, q3::Log& log) {
+// `common` and `feedback` live in main so that a failure can still reach NetRadiant.
+int run(const std::vector<std::string>& rawArgs, q3::Log& log, q3::CommonOptions& common,
+        std::shared_ptr<q3::FeedbackStream>& feedback) {
     std::vector<q3::cli::StageDescription> stages = stageList();
-    q3::CommonOptions common;
     q3::shtools::ShProbeOptions probe;
     q3::shtools::ShImageOptions image;
+    // -shcubemap takes six images instead of a map file: run before the map-file command line.
+    if (auto it = std::find(rawArgs.begin(), rawArgs.end(), "-shcubemap");
+        it != rawArgs.end() && !isHelpRequest(rawArgs)) {
+        q3::cli::ParseContext context = q3::cli::stageParseContext("-shcubemap", q3::cli::commonOptionTable(), stages);
+        q3::cli::parseOptions(q3::cli::commonOptionTable(), std::span(rawArgs.begin(), it), context, common);
+        log.setVerbose(common.verbose);
+        return q3::shtools::runShCubemapCommand(std::span(it + 1, rawArgs.end()), context, log);
+    }
     std::vector<std::string> args = takePositionalViewerArgs(rawArgs, probe, image);
     q3::cli::CommandLine line = q3::cli::splitCommandLine(args, q3::cli::commonOptionTable(), stages, common);
     if (line.help) {
@@ -89,7 +117,6 @@ int run(const std::vector<std::string>& rawArgs, q3::Log& log) {
         return 0;
     }
     log.setVerbose(common.verbose);
-    std::shared_ptr<q3::FeedbackStream> feedback;
     if (!common.connect.empty()) feedback = q3::connectNetRadiant(common.connect, log);
     std::optional<tbb::global_control> threads;
     if (common.threads > 0)
@@ -135,6 +162,11 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
         q3::cli::parseOptions(q3::shtools::shImageOptionTable(), line.stageArgs, context, image);
         return q3::shtools::runShImageStage(image, common, log);
     }
+    if (line.stage == "-export" || line.stage == "-import") {
+        parseStageOptions(q3::light::pictureStageOptionTable(), line, stages);
+        return line.stage == "-export" ? q3::light::runExportStage(common, log)
+                                        : q3::light::runImportStage(common, log);
+    }
     if (line.stage == "-json") {
         auto options = parseStageOptions(q3::json::jsonOptionTable(), line, stages);
         return q3::json::runJsonStage(options, common, log);
@@ -144,21 +176,31 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
     throw UsageError(line.stage + " is a q3map2 stage this build does not implement yet");
 }
 
+// Prints the one-line error; when the command line got as far as -connect (a stage or a stage
+// option this build lacks, say) the editor is told too, since it shows only what it receives.
+void reportFailure(q3::Log& log, const q3::CommonOptions& common, std::shared_ptr<q3::FeedbackStream>& feedback,
+                   const char* message) {
+    if (!feedback && !common.connect.empty()) feedback = q3::connectNetRadiant(common.connect, log);
+    log.error(message);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     q3::Log log;
+    q3::CommonOptions common;  // filled as far as the command line parsed
+    std::shared_ptr<q3::FeedbackStream> feedback;
     try {
-        return run(args, log);
+        return run(args, log, common, feedback);
     } catch (const UsageError& e) {
-        log.error(e.what());
+        reportFailure(log, common, feedback, e.what());
         return 2;
     } catch (const std::exception& e) {
-        log.error(e.what());
+        reportFailure(log, common, feedback, e.what());
         return 1;
     } catch (...) {
-        log.error("unexpected failure");
+        reportFailure(log, common, feedback, "unexpected failure");
         return 1;
     }
 }

@@ -33,15 +33,27 @@ Progress::Progress(std::size_t total, ProgressMode mode, Output output, Progress
     }
 }
 
+ProgressConsole ProgressConsole::of(std::FILE* stream) {
+    return ProgressConsole{stream, progressModeFor(stream) == ProgressMode::Bar, steadySeconds};
+}
+
 Progress Progress::forConsole(Log& log, std::size_t total, bool show, std::FILE* console) {
-    if (!show) return Progress(total, ProgressMode::Silent, [](std::string_view) {});
-    ProgressMode mode = progressModeFor(console);
-    if (mode == ProgressMode::Bar)
-        return Progress(total, mode, [console](std::string_view text) {
-            std::fwrite(text.data(), 1, text.size(), console);
-            std::fflush(console);
-        });
-    return Progress(total, mode, [&log](std::string_view text) { log.raw(text); });
+    return forConsole(log, total, show, ProgressConsole::of(console));
+}
+
+Progress Progress::forConsole(Log& log, std::size_t total, bool show, const ProgressConsole& console) {
+    if (!show) return Progress(total, ProgressMode::Silent, [](std::string_view) {}, console.clock);
+    if (console.isTerminal && console.stream) {
+        std::FILE* stream = console.stream;
+        return Progress(
+            total, ProgressMode::Bar,
+            [stream](std::string_view text) {
+                std::fwrite(text.data(), 1, text.size(), stream);
+                std::fflush(stream);
+            },
+            console.clock);
+    }
+    return Progress(total, ProgressMode::Dots, [&log](std::string_view text) { log.raw(text); }, console.clock);
 }
 
 Progress::Progress(Progress&& other) noexcept

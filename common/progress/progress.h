@@ -32,6 +32,17 @@ ProgressMode progressModeFor(std::FILE* stream);
 using ProgressClock = std::function<double()>;
 double steadySeconds();
 
+// The console a progress display is shown on. `isTerminal` picks the bar over the dots; it is
+// normally read from the stream, and set by hand where the caller knows better (tests, a pipe that
+// ends in a terminal emulator).
+struct ProgressConsole {
+    std::FILE* stream = stdout;
+    bool isTerminal = false;
+    ProgressClock clock = steadySeconds;
+
+    static ProgressConsole of(std::FILE* stream);  // isTerminal from isatty()
+};
+
 class Progress {
 public:
     using Output = std::function<void(std::string_view)>;
@@ -44,6 +55,7 @@ public:
     // show == false nothing is printed.
     static Progress forConsole(Log& log, std::size_t total, bool show = true,
                                std::FILE* console = stdout);
+    static Progress forConsole(Log& log, std::size_t total, bool show, const ProgressConsole& console);
 
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "script.h"
 #include "shader_parser.h"
@@ -13,11 +15,24 @@ bool containsNoCase(const std::vector<std::string>& list, std::string_view item)
     return std::any_of(list.begin(), list.end(), [&](const std::string& s) { return equalsNoCase(s, item); });
 }
 
+// Lower-case names already taken: lists may name tens of thousands of files, so membership tests
+// must not scan the list.
+class NoCaseSet {
+public:
+    // True when `name` was not in the set yet.
+    bool insert(std::string_view name) { return keys_.insert(toLower(name)).second; }
+    bool contains(std::string_view name) const { return keys_.count(toLower(name)) != 0; }
+
+private:
+    std::unordered_set<std::string> keys_;
+};
+
 }  // namespace
 
 std::vector<std::string> parseShaderList(std::string_view text, const std::string& fileName,
                                          const std::string& scriptDir) {
     std::vector<std::string> names;
+    NoCaseSet seen;
     Script script(text, fileName, false);
     while (script.next(true)) {
         std::string name = script.token();
@@ -26,25 +41,29 @@ std::vector<std::string> parseShaderList(std::string_view text, const std::strin
                       equalsNoCase(std::string_view(name).substr(name.size() - kExt.size()), kExt);
         if (!hasExt) name += kExt;
         std::string path = scriptDir + "/" + name;
-        if (!containsNoCase(names, path)) names.push_back(std::move(path));
+        if (seen.insert(path)) names.push_back(std::move(path));
     }
     return names;
 }
 
 std::vector<std::string> shaderScriptLoadOrder(const std::vector<std::string>& available,
                                                const std::vector<std::string>& listed, Log& log) {
+    // First spelling of each available file, by lower-case name (the first match wins, as a
+    // front-to-back search would find it).
+    std::unordered_map<std::string, const std::string*> availableByKey;
+    for (const std::string& name : available) availableByKey.emplace(toLower(name), &name);
     std::vector<std::string> order;
+    NoCaseSet ordered;
     for (const std::string& name : listed) {
-        auto it = std::find_if(available.begin(), available.end(),
-                               [&](const std::string& a) { return equalsNoCase(a, name); });
-        if (it == available.end()) {
+        const auto it = availableByKey.find(toLower(name));
+        if (it == availableByKey.end()) {
             log.warning("shaderlist.txt names " + name + ", which does not exist");
             continue;
         }
-        if (!containsNoCase(order, *it)) order.push_back(*it);
+        if (ordered.insert(*it->second)) order.push_back(*it->second);
     }
     for (const std::string& name : available)
-        if (!containsNoCase(order, name)) order.push_back(name);
+        if (ordered.insert(name)) order.push_back(name);
     return order;
 }
 
@@ -52,11 +71,13 @@ ShaderTable buildShaderTable(const std::vector<ShaderScriptSource>& scripts, con
                              bool shaderListFound, Log& log) {
     ShaderTable table;
     table.setHasShaderList(shaderListFound);
+    NoCaseSet listedSet;
+    for (const std::string& name : listed) listedSet.insert(name);
     for (const ShaderScriptSource& script : scripts) {
         std::vector<ShaderInfo> shaders = parseShaderScript(script.text, script.displayName, log, &table);
         ShaderTable::SourceFile file;
         file.path = script.path;
-        file.inShaderList = containsNoCase(listed, script.path);
+        file.inShaderList = listedSet.contains(script.path);
         file.shaderCount = static_cast<int>(shaders.size());
         table.addFile(std::move(file));
         for (ShaderInfo& shader : shaders) {

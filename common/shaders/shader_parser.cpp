@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <unordered_map>
 
 #include "script.h"
 #include "shader_math.h"
@@ -72,8 +73,9 @@ public:
             shader.sourceFile = fileName_;
             shader.sourceLine = nameLine;
             shaders_ = &shaders;
-            if (parseBody(shader)) shaders.push_back(std::move(shader));
-            else break;  // end of file reached inside the shader
+            if (!parseBody(shader)) break;  // end of file reached inside the shader
+            firstByKey_.emplace(shaderKey(shader.name), shaders.size());  // an earlier one keeps its slot
+            shaders.push_back(std::move(shader));
         }
         return shaders;
     }
@@ -345,12 +347,8 @@ private:
     // table, else an implicit shader), keeping this shader's identity.
     void inheritBaseShader(ShaderInfo& shader, const std::string& baseName) {
         const ShaderInfo* base = nullptr;
-        const std::string key = shaderKey(baseName);
-        for (const ShaderInfo& s : *shaders_)
-            if (shaderKey(s.name) == key) {
-                base = &s;
-                break;
-            }
+        if (const auto it = firstByKey_.find(shaderKey(baseName)); it != firstByKey_.end())
+            base = &(*shaders_)[it->second];
         if (!base && earlier_) base = earlier_->findExplicit(baseName);
         ShaderInfo copy = base ? *base : makeImplicitShader(baseName);
         copy.name = shader.name;
@@ -366,6 +364,9 @@ private:
     Log& log_;
     const ShaderTable* earlier_;
     const std::vector<ShaderInfo>* shaders_ = nullptr;
+    // Index in *shaders_ of the first shader of this file with each shaderKey, so that long
+    // q3map_baseShader chains do not rescan the file for every link.
+    std::unordered_map<std::string, size_t> firstByKey_;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 // The shader table of a game: every scripts/*.shader of the VFS, shader lists first.
 #include <algorithm>
+#include <unordered_set>
 
 #include "script.h"
 #include "shader_loader.h"
@@ -10,10 +11,6 @@ namespace {
 
 std::string bytesToText(const std::vector<uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
 
-bool containsNoCase(const std::vector<std::string>& list, std::string_view item) {
-    return std::any_of(list.begin(), list.end(), [&](const std::string& s) { return equalsNoCase(s, item); });
-}
-
 }  // namespace
 
 ShaderTable loadShaderTable(const Vfs& vfs, Log& log) {
@@ -21,10 +18,11 @@ ShaderTable loadShaderTable(const Vfs& vfs, Log& log) {
     const std::string listPath = scriptDir + "/shaderlist.txt";
 
     std::vector<std::string> listed;
+    std::unordered_set<std::string> listedKeys;  // lower case; lists may be long
     std::vector<std::vector<uint8_t>> lists = vfs.readAll(listPath);
     for (const std::vector<uint8_t>& bytes : lists)
         for (std::string& name : parseShaderList(bytesToText(bytes), listPath, scriptDir))
-            if (!containsNoCase(listed, name)) listed.push_back(std::move(name));
+            if (listedKeys.insert(toLower(name)).second) listed.push_back(std::move(name));
 
     std::vector<std::string> order = shaderScriptLoadOrder(vfs.list(scriptDir, "shader"), listed, log);
     std::vector<ShaderScriptSource> scripts;

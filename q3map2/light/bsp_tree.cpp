@@ -53,6 +53,9 @@ static double planeDistance(const bsp::Plane& plane, Vec3 p) {
 
 int BspTree::leafForPoint(Vec3 point) const {
     if (bsp_.nodes.empty()) return bsp_.leafs.empty() ? -1 : 0;
+    // A non-finite point compares as "on the plane" everywhere, which would walk both sides of
+    // every node: it lies in no leaf.
+    if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) return -1;
     // Iterative walk; a point on a plane (within 0.1) first tries the front child and keeps its
     // leaf when that leaf belongs to a cluster.
     struct Local {

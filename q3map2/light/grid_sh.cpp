@@ -2,13 +2,13 @@
 // The light list, occlusion and falloff are those of the legacy grid (lightToGridPoint); only the
 // way a contribution is stored differs: projected from its true direction instead of being folded
 // into one ambient + directed pair.
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "grid_blocks.h"
 #include "grid_sh.h"
+#include "grid_sh_gather.h"
 #include "light_context.h"
 #include "light_contribution.h"
 #include "light_text.h"
@@ -21,7 +21,11 @@ constexpr float kGridEpsilon = 0.0f;       // first point-in-solid test (as the 
 constexpr float kNudgedEpsilon = -0.125f;  // test of nudged points (as the legacy grid)
 constexpr int kMaxAreaSubdivisions = 8;    // pieces per triangle edge for emitters close to a point
 constexpr float kPiecesPerRadius = 4.0f;   // pieces per edge ~ this * emitter radius / distance
+// Emitters adding less than this (legacy units, 255 = white) are one directional sample: spreading
+// so little light over its true directions changes no probe by more than a fraction of a unit.
+constexpr float kMinPiecedLight = 2.0f;
 constexpr float kAreaPushDistance = 8.0f;  // points this close to an emitter plane are pushed off it
+constexpr int kBlockEdge = 4;              // grid points per block edge (lights culled per block)
 
 sh::Vec3d toSh(Vec3 v) { return {v.x, v.y, v.z}; }
 sh::Rgb toRgb(Vec3 v, double scale) { return {v.x * scale, v.y * scale, v.z * scale}; }
@@ -52,14 +56,11 @@ int chooseAreaSubdivisions(const Light& light, Vec3 pushed) {
 
 // A Lambertian emitter of the q3map2 model sends light.add / pi (legacy units) per steradian: the
 // legacy form factor is the projected solid angle / pi times light.add. Each piece adds its solid
-// angle times that radiance as a directional sample, shadowed by its own ray.
-void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 origin, Vec3 pushed, int pieces,
-                   const LightingEnv& env) {
+// angle times that radiance as a directional sample. The emitter is shadowed as a whole by the
+// legacy grid's ray (`transmission`): the pieces spread its light over the directions it covers,
+// at no extra rays, and the SH grid sees exactly the occlusion the legacy grid sees.
+void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 pushed, int pieces, Vec3 transmission) {
     const double radiance = double(light.add) / sh::kPi;
-    // The winding lies one unit behind light.origin; shadow rays aim one unit off it, on the side of
-    // the point (the legacy ray aims at light.origin, one unit in front).
-    const float windingPlane = light.planeDist - 1.0f;
-    const float side = dot(origin, light.normal) - windingPlane >= 0 ? 1.0f : -1.0f;
     const size_t n = light.winding.size();
     const float step = 1.0f / float(pieces);
     auto at = [&](Vec3 p0, Vec3 e1, Vec3 e2, int i, int j) {
@@ -71,10 +72,6 @@ void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 origin, Vec3 push
         const Vec3 centroid = (a + b + c) / 3.0f;
         const Vec3 dir = normalize(centroid - pushed);
         if (dir == Vec3{}) return;
-        Vec3 transmission{1, 1, 1};
-        if (env.scene)
-            transmission = env.scene->transmission(origin, centroid + light.normal * side, env.settings.ignoreNear);
-        if (transmission == Vec3{}) return;
         const double scale = radiance * omega / 255.0;
         sh::addDirectionalIrradiance(acc, toSh(dir), toRgb(light.color * transmission, scale));
     };
@@ -101,8 +98,17 @@ bool isBlack(const sh::GridPointSH& p) {
 
 std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,
                                                        int cluster, const LightingEnv& env, int areaSubdivisions) {
-    std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, env);
+    // The legacy contribution, unoccluded, with its shadow ray set aside; traced once below.
+    thread_local std::vector<ShadowRay> ray;  // at most one ray; kept to avoid an allocation per call
+    ray.clear();
+    LightingEnv deferred = env;
+    deferred.deferredRays = env.scene ? &ray : nullptr;
+    std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, deferred);
     if (!c) return c;
+    Vec3 transmission{1, 1, 1};
+    if (!ray.empty()) env.scene->traceBatch(ray, std::span<Vec3>(&transmission, 1));
+    if (transmission == Vec3{}) return std::nullopt;
+    c->color *= transmission;
     const sh::Rgb color = toRgb(c->color, 1.0 / 255.0);
     if (light.controlled && light.type != LightType::Sun) {
         sh::addControlledIncidence(acc, toSh(c->direction), color, light.controlled->dotProductWeight);
@@ -112,9 +118,10 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
         const float d = dot(origin, light.normal) - light.planeDist;
         const bool nearPlane = d > -kAreaPushDistance && d < kAreaPushDistance;
         const Vec3 pushed = nearPlane ? origin + light.normal * (kAreaPushDistance - d) : origin;
-        const int pieces = areaSubdivisions > 0 ? areaSubdivisions : chooseAreaSubdivisions(light, pushed);
+        const bool faint = maxComponent(c->color) < kMinPiecedLight;
+        const int pieces = areaSubdivisions > 0 ? areaSubdivisions : faint ? 1 : chooseAreaSubdivisions(light, pushed);
         if (pieces > 1) {
-            addAreaPieces(acc, light, origin, pushed, pieces, env);
+            addAreaPieces(acc, light, pushed, pieces, transmission);
             return c;
         }
     }
@@ -208,58 +215,60 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     const LightingEnv env = gridLightingEnv(ctx);
     const bool useTree = ctx.tree && !ctx.bsp.nodes.empty();
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
-    const std::vector<Vec3> offsets = useTree ? nudgeOffsets(nudgeRadius, std::max(1.0f, nudgeRadius / 4.0f))
+    // Offsets half the radius apart (33 positions): a point deep in solid costs one tree walk per
+    // position, and solid points are filled from their neighbours afterwards anyway.
+    const std::vector<Vec3> offsets = useTree ? nudgeOffsets(nudgeRadius, std::max(1.0f, nudgeRadius / 2.0f))
                                               : std::vector<Vec3>{};
     const float gridScale = ctx.options.gridScale;
-    const int bx = layout.bounds[0], by = layout.bounds[1];
 
     std::vector<uint8_t> solid(numPoints, 0), nudged(numPoints, 0);
+    std::vector<Vec3> origins(numPoints);
     log.info(strCat("SH light grid: ", numPoints, " points"));
     Progress progress = Progress::forConsole(log, numPoints);
-    auto body = [&](const tbb::blocked_range<size_t>& range) {
-        progress.advance(range.size());
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            const int x = int(i % size_t(bx)), y = int((i / size_t(bx)) % size_t(by)), z = int(i / (size_t(bx) * by));
-            Vec3 origin = layout.pointOrigin(x, y, z);
-            int cluster = -1;
-            if (useTree) {
-                cluster = ctx.tree->clusterForPointExt(origin, kGridEpsilon);
-                if (cluster < 0) {
-                    std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, offsets, kNudgedEpsilon);
-                    if (!free) {
-                        solid[i] = 1;
-                        continue;
-                    }
-                    nudged[i] = 1;
-                    origin = *free;
-                    cluster = ctx.tree->clusterForPoint(origin);
+    auto lightPoint = [&](size_t i, Vec3 origin, std::span<const uint32_t> candidates) {
+        int cluster = -1;
+        if (useTree) {
+            cluster = ctx.tree->clusterForPointExt(origin, kGridEpsilon);
+            if (cluster < 0) {
+                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, offsets, kNudgedEpsilon);
+                if (!free) {
+                    solid[i] = 1;
+                    return;
                 }
+                nudged[i] = 1;
+                origin = *free;
+                cluster = ctx.tree->clusterForPoint(origin);
             }
-            sh::SH9Color acc;
-            Vec3 total = ctx.world.ambient;
-            for (const Light& light : ctx.lights) {
-                if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
-                std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
-                if (!c) continue;
-                total += c->color;
-                if (ctx.options.cheapGrid && total.x >= 255 && total.y >= 255 && total.z >= 255) break;
-            }
-            applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
-            grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));
         }
+        origins[i] = origin;
+        sh::SH9Color acc;
+        Vec3 total = ctx.world.ambient;
+        for (uint32_t lightIndex : candidates) {
+            const Light& light = ctx.lights[lightIndex];
+            if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
+            std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
+            if (!c) continue;
+            total += c->color;
+            if (ctx.options.cheapGrid && total.x >= 255 && total.y >= 255 && total.z >= 255) break;
+        }
+        applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
+        grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));
     };
-    tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, numPoints, 64), body); });
+    // Nudged points move at most nudgeRadius from their lattice position.
+    lightGridByBlocks(GridLattice{layout.bounds, layout.mins, layout.size}, ctx.lights, nudgeRadius + 1.0f,
+                      env.settings.forceFast, kBlockEdge, ctx.threads, progress, lightPoint);
     progress.finish();
 
     ShTraceStats stats;
     stats.points = numPoints;
+    stats.bounds = layout.bounds;
     for (size_t i = 0; i < numPoints; ++i) {
         stats.nudged += nudged[i];
         stats.inSolid += solid[i];
         stats.blackBeforeFill += isBlack(grid.points[i]) ? 1 : 0;
     }
     stats.solid = solid;
+    stats.origins = std::move(origins);
     std::vector<uint8_t> unset = solid;
     stats.filled = fillFromNeighbours(grid.points, unset, layout.bounds);
     for (const sh::GridPointSH& p : grid.points) stats.blackAfterFill += isBlack(p) ? 1 : 0;
@@ -274,7 +283,14 @@ ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
     ShTraceStats stats;
     if (!ctx.options.sh && !ctx.options.shBspx) return stats;
     const ShGridLayout layout = setupGridSH(ctx, log);
-    const sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
+    sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
+    if (ctx.options.shGather) {  // indirect light on top of the direct light traced above
+        std::vector<LightImage> images;
+        const std::vector<ShaderAlbedo> albedo = loadShaderAlbedo(ctx, images, log);
+        const ShGatherStats gathered = gatherIndirectSH(ctx, albedo, grid, stats, log);
+        ctx.stats.shGatherRays = gathered.rays;
+        ctx.stats.shGatherSeconds = gathered.seconds;
+    }
     attachGridSH(ctx.bsp, grid, ctx.options.shBspx);
     return stats;
 }

@@ -64,12 +64,14 @@ ShGridLayout setupGridSH(const LightContext& ctx, Log& log);
 
 struct ShTraceStats {
     uint64_t points = 0;
+    std::array<int, 3> bounds{};  // points per axis
     uint64_t nudged = 0;          // started in solid, moved out within half a cell
     uint64_t inSolid = 0;         // stayed in solid (filled from neighbours)
     uint64_t filled = 0;          // in-solid points that received a neighbour average
     uint64_t blackBeforeFill = 0; // all-zero points after the trace
     uint64_t blackAfterFill = 0;  // all-zero points at the end
     std::vector<uint8_t> solid;   // per point: 1 = stayed in solid
+    std::vector<Vec3> origins;    // per point: where it was lit (its lattice position or the nudged one)
 };
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,

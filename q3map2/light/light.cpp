@@ -1,6 +1,7 @@
 // The -light stage driver: load -> scene -> lights -> lightmaps -> vertex light -> legacy grid ->
 // write. Each step is a function of the LightContext (light_context.h); this file only sequences
 // them, times them and writes the result.
+#include <algorithm>
 #include <cstring>
 
 #include "file_io.h"
@@ -122,9 +123,11 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
         phase("light grid");
         lightGrid(ctx, log);
     }
+    std::optional<GridDimensions> shGrid;
     if (options.sh && !options.noGrid) {
         phase("SH grid");  // SetupGridSH + TraceGridSH (grid_sh.h), stored as lump 18 or BSPX
-        lightGridSH(ctx, log);
+        const ShTraceStats sh = lightGridSH(ctx, log);
+        shGrid = GridDimensions{sh.bounds[0], sh.bounds[1], sh.bounds[2]};
     }
     phase("write");
     writeLitBsp(ctx, log);
@@ -133,6 +136,10 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     log.info(strCat(ctx.stats.lightmaps, " raw lightmaps, ", ctx.stats.luxels, " luxels, ", ctx.stats.vertexes,
                     " vertexes, ", ctx.stats.gridPoints, " grid points, ",
                     ctx.scene ? ctx.scene->raysTraced() : 0, " rays traced"));
+    if (ctx.stats.shGatherRays > 0)
+        log.info(strCat("SH gather: ", ctx.stats.shGatherRays, " rays in ", ctx.stats.shGatherSeconds, " s, ",
+                        uint64_t(double(ctx.stats.shGatherRays) / std::max(1e-9, ctx.stats.shGatherSeconds)),
+                        " rays/s"));
     timer.printSummary(log);
     log.info(strCat(log.warningCount(), " warnings"));
     if (stats) {
@@ -142,6 +149,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
         stats->counters["rawLightmaps"] = static_cast<int64_t>(ctx.stats.lightmaps);
         stats->counters["vertexes"] = static_cast<int64_t>(ctx.stats.vertexes);
         stats->counters["gridPointsInSolid"] = static_cast<int64_t>(ctx.stats.gridPointsInSolid);
+        if (ctx.stats.shGatherRays > 0) stats->counters["shGatherRays"] = static_cast<int64_t>(ctx.stats.shGatherRays);
         if (!options.noGrid) {
             // The entity lump now holds the grid size the grid was built with.
             const bsp::Entity* worldspawn = ctx.entities.empty() ? nullptr : &ctx.entities.front();
@@ -149,6 +157,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
             GridLayout layout = computeGridLayout(parseGridSize(size, ctx.bspPath.string()), ctx.bsp);
             stats->legacyGrid = GridDimensions{layout.bounds[0], layout.bounds[1], layout.bounds[2]};
         }
+        stats->shGrid = shGrid;
     }
     return 0;
 }

@@ -11,6 +11,7 @@
 #include "bsp_tree.h"
 #include "bspfile.h"
 #include "color_pipeline.h"
+#include "grid_sh_gather.h"
 #include "light_contribution.h"
 #include "light_options.h"
 #include "light_shaders.h"
@@ -32,6 +33,8 @@ struct LightStats {
     uint64_t gridPointsInSolid = 0;  // grid points left dark (no free point nearby)
     uint64_t lightmaps = 0;       // raw lightmaps
     uint64_t droppedStyledLight = 0;  // contributions of styles other than 0 (not stored in IBSP)
+    uint64_t shGatherRays = 0;    // -shgather rays traced
+    double shGatherSeconds = 0;   // -shgather time (scene build, rays, projection)
 };
 
 struct LightContext {
@@ -54,7 +57,7 @@ struct LightContext {
     // Scene.
     std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
-    std::vector<uint8_t> receiveShadows; // per BSP surface: 0 = lit as if nothing occluded it
+    std::vector<int> receiveShadows;     // per BSP surface: shadow group it receives from (0 = none)
     std::vector<int> skyIndices;         // per BSP shader
     std::unique_ptr<BspTree> tree;
     SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
@@ -68,6 +71,8 @@ struct LightContext {
     // Vertex light taken from finished lightmaps (per draw vertex; `vertexLit` false = trace it).
     std::vector<Vec3> vertexLight;
     std::vector<uint8_t> vertexFromLightmap;
+    // -shgather only: the linear light of every lightmapped surface, per BSP surface (grid_sh_gather.h).
+    std::vector<BakedSurfaceLight> bakedLight;
 
     LightStats stats;
 };
@@ -99,5 +104,7 @@ void writeLitBsp(LightContext& ctx, Log& log);
 // Environment used to light luxels and vertices (scene, tree, settings).
 LightingEnv surfaceLightingEnv(const LightContext& ctx);
 LightingEnv gridLightingEnv(const LightContext& ctx);
+// `env` for the luxels and vertices of one surface: its receive shadow group picks the casters.
+LightingEnv receiverLightingEnv(const LightContext& ctx, const LightingEnv& env, int surfaceNum);
 
 }  // namespace q3::light

@@ -56,11 +56,13 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
     if (env.deferredRays) {
-        if (std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear))
+        if (std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear)) {
+            ray->mask = env.rayMask;
             env.deferredRays->push_back(*ray);
+        }
         return {1, 1, 1};
     }
-    return env.scene->transmission(from, to, env.settings.ignoreNear);
+    return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask);
 }
 
 Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
@@ -68,10 +70,11 @@ Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
     if (env.deferredRays) {
         // Sun normals are unit vectors already (skyRay would normalise again).
         env.deferredRays->push_back(ShadowRay{from, sun.normal, std::max(env.settings.ignoreNear, 0.0f),
-                                              std::numeric_limits<float>::infinity(), true, sun.skyIndex});
+                                              std::numeric_limits<float>::infinity(), true, sun.skyIndex,
+                                              env.rayMask});
         return {1, 1, 1};
     }
-    return env.scene->skyTransmission(from, sun.normal, sun.skyIndex, env.settings.ignoreNear);
+    return env.scene->skyTransmission(from, sun.normal, sun.skyIndex, env.settings.ignoreNear, env.rayMask);
 }
 
 std::optional<LightContribution> finish(const Light& light, Vec3 color, Vec3 direction, Vec3 transmission) {

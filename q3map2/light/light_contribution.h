@@ -46,6 +46,8 @@ struct LightingEnv {
     // appended here and the contribution returned unoccluded; the caller traces the batch
     // (TraceScene::traceBatch) and multiplies each contribution by its ray's transmission.
     std::vector<ShadowRay>* deferredRays = nullptr;
+    // Shadow groups that may block this receiver's rays (TraceScene::receiverMask).
+    uint32_t rayMask = kAllShadowGroups;
 };
 
 // Fraction of the hemisphere above (point, normal) covered by the polygon, signed by facing

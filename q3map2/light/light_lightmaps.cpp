@@ -10,9 +10,11 @@
 
 #include "light_context.h"
 #include "light_text.h"
+#include "lightmap_export.h"
 #include "lightmap_filter.h"
 #include "lightmap_layout.h"
 #include "lightmap_pack.h"
+#include "luxel_passes.h"
 #include "patch.h"
 #include "progress.h"
 
@@ -79,6 +81,45 @@ std::array<Vec3, 2> curvedTangents(Vec3 normal) {
     return {s, cross(normal, s)};
 }
 
+// Luxels grouped in square tiles of the super-sampled lightmap: a light whose envelope misses a
+// tile's bounds skips its luxels (large surfaces meet many lights that reach only a corner).
+struct LuxelTiles {
+    std::vector<Bounds> bounds;
+    std::vector<std::vector<uint32_t>> luxels;  // indices of the luxels with a sample point
+
+    LuxelTiles(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int edge) {
+        for (int ty = 0; ty < h; ty += edge)
+            for (int tx = 0; tx < w; tx += edge) {
+                Bounds b;
+                std::vector<uint32_t> members;
+                for (int y = ty; y < std::min(h, ty + edge); ++y)
+                    for (int x = tx; x < std::min(w, tx + edge); ++x) {
+                        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+                        if (!points[i]) continue;
+                        b.add(points[i]->origin);
+                        members.push_back(static_cast<uint32_t>(i));
+                    }
+                if (members.empty()) continue;
+                bounds.push_back(b);
+                luxels.push_back(std::move(members));
+            }
+    }
+
+    // The tiles the light's envelope reaches.
+    void reachedBy(const Light& light, bool forceFast, std::vector<uint32_t>& out) const {
+        out.clear();
+        for (size_t t = 0; t < bounds.size(); ++t)
+            if (lightReachesBounds(light, bounds[t], forceFast)) out.push_back(static_cast<uint32_t>(t));
+    }
+    template <typename Visit>
+    void forEachLuxel(std::span<const uint32_t> tiles, Visit&& visit) const {
+        for (uint32_t t : tiles)
+            for (uint32_t i : luxels[t]) visit(i);
+    }
+};
+
+constexpr int kTileEdge = 8;  // super luxels per tile edge
+
 struct LuxelSampler {
     const LightContext& ctx;
     const LightingEnv& env;
@@ -107,47 +148,56 @@ struct LuxelSampler {
         return p;
     }
 
-    // lightAt for every sample point of `points` (nullopt = no light; `skip[i]` = leave dark), with
-    // the shadow rays of one light traced together as one batch.
-    void lightAll(const Light& light, const std::vector<std::optional<SamplePoint>>& points,
-                  const std::vector<uint8_t>& skip, std::vector<Vec3>& out, uint64_t& dropped) const {
-        constexpr size_t kStyledFlag = size_t{1} << (sizeof(size_t) * 8 - 1);
+    // Reused between lights so that lighting a surface allocates once, not once per light.
+    struct Scratch {
         std::vector<ShadowRay> rays;
         std::vector<size_t> rayLuxel;  // luxel of each ray; kStyledFlag marks a dropped styled light
-        rays.reserve(points.size());
-        rayLuxel.reserve(points.size());
+        std::vector<Vec3> transmission;
+    };
+    static constexpr size_t kStyledFlag = size_t{1} << (sizeof(size_t) * 8 - 1);
+
+    // lightAt for the sample points of the tiles `active` (nullopt = no light; `skip[i]` = leave
+    // dark), written to out[i]; the shadow rays of the light are traced together as one batch.
+    // Entries of `out` outside those tiles are not touched.
+    void lightAll(const Light& light, const std::vector<std::optional<SamplePoint>>& points, const LuxelTiles& tiles,
+                  std::span<const uint32_t> active, const std::vector<uint8_t>& skip, std::vector<Vec3>& out,
+                  Scratch& scratch, uint64_t& dropped) const {
+        std::vector<ShadowRay>& rays = scratch.rays;
+        std::vector<size_t>& rayLuxel = scratch.rayLuxel;
+        rays.clear();
+        rayLuxel.clear();
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
-        for (size_t i = 0; i < points.size(); ++i) {
+        tiles.forEachLuxel(active, [&](uint32_t i) {
             out[i] = Vec3{};
-            if (!points[i] || skip[i]) continue;
+            if (!points[i] || skip[i]) return;
             const size_t before = rays.size();
             std::optional<LightContribution> c = lightToSample(light, *points[i], deferred);
             const bool traced = rays.size() > before;
             if (!c) {
                 rays.resize(before);
-                continue;
+                return;
             }
             if (c->style != 0) {
                 if (traced)
                     rayLuxel.push_back(i | kStyledFlag);
                 else
                     ++dropped;
-                continue;
+                return;
             }
             out[i] = c->color;
             if (traced) rayLuxel.push_back(i);
-        }
+        });
         if (rays.empty()) return;
-        std::vector<Vec3> transmission(rays.size());
-        env.scene->traceBatch(rays, transmission);
+        scratch.transmission.resize(rays.size());
+        env.scene->traceBatch(rays, scratch.transmission);
         for (size_t k = 0; k < rays.size(); ++k) {
             const size_t i = rayLuxel[k] & ~kStyledFlag;
             if (rayLuxel[k] & kStyledFlag) {
-                if (!(transmission[k] == Vec3{})) ++dropped;
+                if (!(scratch.transmission[k] == Vec3{})) ++dropped;
                 continue;
             }
-            out[i] *= transmission[k];
+            out[i] *= scratch.transmission[k];
         }
     }
 
@@ -222,20 +272,12 @@ bool visibleFromLightmap(const Light& light, const LightmapReach& r, const BspTr
     return false;
 }
 
-bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
-    if (light.type == LightType::Sun) return true;
-    const float envelope = lightEnvelope(light, forceFast);
-    if (!std::isfinite(envelope)) return true;
-    const Vec3 nearest = vmin(vmax(light.origin, bounds.mins), bounds.maxs);
-    return distance(nearest, light.origin) < envelope;
-}
 
 RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv, int surfaceNum,
-                          const LayoutOptions& layoutOptions) {
+                          const LayoutOptions& layoutOptions, const LuxelPasses* passes) {
     RawResult result;
-    // Surfaces of entities that do not receive shadows are lit without occlusion.
-    LightingEnv env = sharedEnv;
-    if (!ctx.receiveShadows.empty() && !ctx.receiveShadows[static_cast<size_t>(surfaceNum)]) env.scene = nullptr;
+    // The receive shadow group picks the casters (group 0: lit without occlusion).
+    const LightingEnv env = receiverLightingEnv(ctx, sharedEnv, surfaceNum);
     const bsp::Surface& surface = ctx.bsp.surfaces[static_cast<size_t>(surfaceNum)];
     const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(surface.shaderNum)];
     const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);
@@ -301,15 +343,30 @@ RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     LuxelImage single(w, h);
     single.state = total.state;
     std::vector<uint8_t> skip(points.size(), 0);  // -cheap: luxels already saturated
+    const LuxelTiles tiles(points, w, h, kTileEdge);
+    std::vector<uint32_t> active;  // tiles the light reaches
+    LuxelSampler::Scratch scratch;
     for (const Light& light : ctx.lights) {
         if (bounds.empty() || !lightReachesBounds(light, bounds, env.settings.forceFast)) continue;
         if (!inFrontOfPlane(light, reach) || !visibleFromLightmap(light, reach, env.tree)) continue;
+        tiles.reachedBy(light, env.settings.forceFast, active);
+        if (active.empty()) continue;
         if (o.cheap)
             for (size_t i = 0; i < points.size(); ++i)
                 skip[i] = total.color[i].x >= 255 && total.color[i].y >= 255 && total.color[i].z >= 255;
-        sampler.lightAll(light, points, skip, single.color, result.droppedStyled);
+        sampler.lightAll(light, points, tiles, active, skip, single.color, scratch, result.droppedStyled);
+        const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, light.filterRadius), raw.sampleSize,
+                                             raw.superSample, o.filter);
+        if (maxLevel == 0 && radius == 0) {
+            // Plain sampling: only the active luxels changed.
+            tiles.forEachLuxel(active, [&](uint32_t i) {
+                total.color[i] += single.color[i];
+                single.color[i] = Vec3{};
+            });
+            continue;
+        }
         bool any = false;
-        for (const Vec3& c : single.color) any = any || !(c == Vec3{});
+        tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
         if (!any && maxLevel == 0) continue;
         if (maxLevel > 0) {
             // Adaptive sub-sampling where this light's lit/unlit state changes between neighbours.
@@ -332,13 +389,13 @@ RawResult lightOneSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
                 }
             single.color = std::move(refined);
         }
-        const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, light.filterRadius), raw.sampleSize,
-                                             raw.superSample, o.filter);
         const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius) : single;
         for (size_t i = 0; i < points.size(); ++i)
             if (points[i]) total.color[i] += add.color[i];
+        std::fill(single.color.begin(), single.color.end(), Vec3{});
     }
 
+    if (passes) applyLuxelPasses(*passes, surface.shaderNum, total, points);  // floodlight, then dirt
     fillFromNeighbours(total, ctx.world.ambient, false, false);
     BspLuxels luxels = downsampleSuperLuxels(total, raw.superSample);
 
@@ -382,11 +439,12 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     layoutOptions.rawSizeLimit = o.rawLightmapSizeLimit;
 
     const LightingEnv env = surfaceLightingEnv(ctx);
+    const std::unique_ptr<LuxelPasses> passes = prepareLuxelPasses(ctx, log);
     std::vector<RawResult> results(surfaces.size());
     Progress progress = Progress::forConsole(log, surfaces.size());
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t k = range.begin(); k != range.end(); ++k) {
-            results[k] = lightOneSurface(ctx, env, surfaces[k], layoutOptions);
+            results[k] = lightOneSurface(ctx, env, surfaces[k], layoutOptions, passes.get());
             progress.advance();
         }
     };
@@ -398,9 +456,12 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     std::vector<LightmapBlock> blocks;
     ctx.vertexLight.assign(ctx.bsp.drawVerts.size(), Vec3{});
     ctx.vertexFromLightmap.assign(ctx.bsp.drawVerts.size(), 0);
+    if (o.shGather) ctx.bakedLight.assign(ctx.bsp.surfaces.size(), BakedSurfaceLight{});
     for (size_t k = 0; k < results.size(); ++k) {
         RawResult& r = results[k];
         if (!r.ok) continue;
+        if (o.shGather)  // kept for the SH gather, which reads the light of the surfaces its rays hit
+            ctx.bakedLight[size_t(surfaces[k])] = {r.luxels.width, r.luxels.height, r.luxels.color, r.layout.vertexCoords};
         ctx.stats.luxels += r.luxelCount;
         ctx.stats.droppedStyledLight += r.droppedStyled;
         ++ctx.stats.lightmaps;
@@ -425,6 +486,7 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     pack.collapse = !o.noCollapse;
     PackedLightmaps packed = packLightmaps(blocks, pack);
     applyPackedLightmaps(ctx.bsp, blocks, packed);
+    exportPackedLightmaps(ctx, packed, log);
     if (packed.external) {
         std::filesystem::path dir = o.lightmapDir.empty()
                                         ? ctx.bspPath.parent_path() / ctx.bspPath.stem()

@@ -108,15 +108,15 @@ cli::OptionTable<O> buildLightTable() {
     integer({"-deluxemode"}, &O::deluxeMode, Range::between(0, 1), "Deluxemap space: 0 model space, 1 tangent space",
             kNotImplemented);
     flag({"-deluxe", "-deluxemap"}, &O::deluxe, "Write light direction maps (deluxemaps)", kNotImplemented);
-    flag({"-dirtdebug", "-debugdirt"}, &O::dirtDebug, "Store the dirt maps as lightmaps", kNotImplemented);
-    real({"-dirtdepth"}, &O::dirtDepth, Range::positive(), "Dirt mapping ray length", kNotImplemented);
-    real({"-dirtgain"}, &O::dirtGain, Range::positive(), "Dirt mapping exponent", kNotImplemented);
+    flag({"-dirtdebug", "-debugdirt"}, &O::dirtDebug, "Store the dirt maps as lightmaps", kImplemented);
+    real({"-dirtdepth"}, &O::dirtDepth, Range::positive(), "Dirt mapping ray length", kImplemented);
+    real({"-dirtgain"}, &O::dirtGain, Range::positive(), "Dirt mapping exponent", kImplemented);
     integer({"-dirtmode"}, &O::dirtMode, Range::between(0, 1), "Dirt ray directions: 0 ordered, 1 random",
-            kNotImplemented);
-    real({"-dirtscale"}, &O::dirtScale, Range::atLeast(0), "Dirt mapping scale", kNotImplemented);
-    flag({"-dirty"}, &O::dirty, "Enable dirt mapping (ambient occlusion)", kNotImplemented);
+            kImplemented);
+    real({"-dirtscale"}, &O::dirtScale, Range::atLeast(0), "Dirt mapping scale", kImplemented);
+    flag({"-dirty"}, &O::dirty, "Enable dirt mapping (ambient occlusion)", kImplemented);
     flag({"-dump"}, &O::dump, "Write radiosity lights as numbered .map prefabs", kNotImplemented);
-    flag({"-export"}, &O::exportLightmaps, "Also export the lightmaps as images when done", kNotImplemented);
+    flag({"-export"}, &O::exportLightmaps, "Also export the lightmaps as images when done", kImplemented);
     real({"-exposure"}, &O::exposure, Range::atLeast(0), "Lightmap exposure for overbright spots (0 = off)",
          kImplemented);
     flag({"-external"}, &O::externalLightmaps, "Write external lightmaps even at the internal size", kImplemented);
@@ -134,7 +134,7 @@ cli::OptionTable<O> buildLightTable() {
     flag({"-fill"}, &O::fill, "Fill unused lightmap texels from their neighbours", kNotImplemented);
     flag({"-fillpink"}, &O::fillPink, "Fill unused lightmap texels with pink", kNotImplemented);
     flag({"-filter"}, &O::filter, "Box-filter lightmaps", kImplemented);
-    flag({"-floodlight"}, &O::floodlight, "Enable floodlight", kNotImplemented);
+    flag({"-floodlight"}, &O::floodlight, "Enable floodlight", kImplemented);
     real({"-gamma"}, &O::gamma, Range::positive(), "Lightmap gamma", kImplemented);
     real({"-gridambientdirectionality"}, &O::gridAmbientDirectionality, Range::between(-1, 1),
          "Ambient directional lighting received by the grid", kImplemented);
@@ -161,6 +161,9 @@ cli::OptionTable<O> buildLightTable() {
                o.lightmapDir = v[0].text;
                o.externalLightmaps = true;
            });
+    action({"-lightmapatlas"}, {{ArgKind::Text, "FILE.png", {}}}, 1, "off",
+           "Also write the packed lightmap pages side by side as one PNG picture", kImplemented,
+           [](O& o, Values v) { o.lightmapAtlas = v[0].text; });
     integer({"-lightmapsearchblocksize"}, &O::lightmapSearchBlockSize, Range::atLeast(0),
             "Restricted lightmap page search: block size", kNotImplemented);
     integer({"-lightmapsearchpower"}, &O::lightmapSearchPower, Range::atLeast(0),
@@ -171,7 +174,7 @@ cli::OptionTable<O> buildLightTable() {
            "Lightmap page size (power of two; a second value sets the height)", kImplemented,
            [](O& o, Values v) { storePageSize("-lightmapsize", o.lightmapWidth, o.lightmapHeight, v); });
     flag({"-lomem"}, &O::loMem, "Low memory but slower lighting mode", kNotImplemented);
-    flag({"-lowquality"}, &O::lowQuality, "Low quality floodlight", kNotImplemented);
+    flag({"-lowquality"}, &O::lowQuality, "Low quality floodlight: one ray in ten", kImplemented);
     integer({"-minsamplesize"}, &O::minSampleSize, Range::atLeast(1), "Minimum lightmap resolution in units per luxel",
             kNotImplemented);
     flag({"-nobouncestore"}, &O::noBounceStore, "Write the BSP and lightmaps only after the last bounce",
@@ -238,6 +241,12 @@ cli::OptionTable<O> buildLightTable() {
            "Store the SH grid as the BSPX lump LIGHTGRID_SH of a version 46 file instead of lump 18; implies -sh",
            kImplemented, [](O& o, Values) { o.sh = o.shBspx = true; });
     flag({"-sh"}, &O::sh, "Compute the L2 spherical-harmonics light grid (lump 18, BSP version 47)", kImplemented);
+    action({"-shgather"}, {}, 0, "off",
+           "Add to the SH grid the indirect light each probe sees by tracing rays into the lit map (lightmap "
+           "light times texture colour); implies -sh",
+           kImplemented, [](O& o, Values) { o.sh = o.shGather = true; });
+    integer({"-shgathersamples"}, &O::shGatherSamples, Range::between(16, 65536),
+            "Rays per SH probe of -shgather (a fixed spherical Fibonacci set)", kImplemented);
     real({"-skyscale", "-sky"}, &O::skyScale, Range::atLeast(0), "Scale of sky and sun light", kImplemented);
     flag({"-slowallocate"}, &O::slowAllocate, "Older, slower lightmap packing", kNotImplemented);
     action({"-sphericalscale", "-spherical"}, {scaleArg}, 1, cli::formatNumber(defaults.pointScale),

@@ -80,6 +80,7 @@ struct LightOptions {
     float vertexLightValue = -1;    // -novertex F: constant vertex light 0..1; -1 = none
     bool noGrid = false;
     bool exportLightmaps = false;
+    std::string lightmapAtlas;      // -lightmapatlas FILE.png: packed pages as one picture; empty = off
     bool triSoup = false;
 
     // Deluxe maps.
@@ -135,6 +136,8 @@ struct LightOptions {
     bool shBspx = false;            // store it as the BSPX lump LIGHTGRID_SH of a v46 file
     float gridScaleSH = 2;          // SH cell = legacy cell / this, per axis
     float gridSizeSH[3] = {0, 0, 0};  // -gridsh X Y Z; all 0 = derived from gridScaleSH
+    bool shGather = false;          // -shgather: add gathered indirect light to the SH grid
+    int shGatherSamples = 64;       // -shgathersamples: rays per probe (docs/sh-for-mappers.md)
 };
 
 const cli::OptionTable<LightOptions>& lightOptionTable();

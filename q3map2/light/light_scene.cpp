@@ -149,7 +149,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
             surfaceFlags[s] = {extra.castShadows, extra.receiveShadows};
         }
     ctx.receiveShadows.assign(bsp.surfaces.size(), 1);
-    for (size_t s = 0; s < surfaceFlags.size(); ++s) ctx.receiveShadows[s] = surfaceFlags[s].receive > 0 ? 1 : 0;
+    for (size_t s = 0; s < surfaceFlags.size(); ++s) ctx.receiveShadows[s] = surfaceFlags[s].receive;
     ctx.surfaceOffsets = surfaceOffset;
     ctx.surfaces.clear();
     ctx.surfaces.resize(bsp.surfaces.size());
@@ -161,7 +161,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
         else if (s.surfaceType == bsp::MST_PATCH)
             geometry = patchGeometry(bsp, s, surfaceOffset[i]);
         geometry.surfaceNum = static_cast<int>(i);
-        geometry.castShadows = surfaceFlags[i].cast > 0;
+        geometry.castShadows = surfaceFlags[i].cast;
         if (s.shaderNum >= 0 && static_cast<size_t>(s.shaderNum) < ctx.shaders.shaders.size())
             geometry.shader = &ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)];
         ctx.surfaces[i] = std::move(geometry);
@@ -258,7 +258,18 @@ LightingEnv gridLightingEnv(const LightContext& ctx) {
     LightingEnv env = surfaceLightingEnv(ctx);
     env.settings.ignoreNear = 0;  // every occluder counts for grid points
     env.settings.forceFast = env.settings.forceFast || ctx.options.fastGrid;
+    if (ctx.scene) env.rayMask = ctx.scene->receiverMask(1);  // grid points receive as the world does
     return env;
+}
+
+LightingEnv receiverLightingEnv(const LightContext& ctx, const LightingEnv& env, int surfaceNum) {
+    LightingEnv out = env;
+    const int group = static_cast<size_t>(surfaceNum) < ctx.receiveShadows.size()
+                          ? ctx.receiveShadows[static_cast<size_t>(surfaceNum)]
+                          : 1;
+    if (group == 0) out.scene = nullptr;  // lit as if nothing occluded it
+    if (out.scene) out.rayMask = out.scene->receiverMask(group);
+    return out;
 }
 
 }  // namespace q3::light

@@ -70,8 +70,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
             const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(s.shaderNum)];
             if (shader.noVertexLight) continue;
             const Vec3 offset = ctx.surfaceOffsets[i];
-            LightingEnv surfaceEnv = env;
-            if (!ctx.receiveShadows.empty() && !ctx.receiveShadows[i]) surfaceEnv.scene = nullptr;
+            const LightingEnv surfaceEnv = receiverLightingEnv(ctx, env, static_cast<int>(i));
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];

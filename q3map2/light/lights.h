@@ -4,9 +4,12 @@
 // same order, including jittered copies (fixed-seed generator per entity).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -225,6 +228,31 @@ std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<Lig
 
 // Fast-envelope radius of a light: beyond it the light adds at most falloffTolerance.
 // Infinity for suns and for lights that do not use an envelope (`forceFast` makes every light use it).
-float lightEnvelope(const Light& light, bool forceFast = false);
+// Inline: it is asked once per light and sample.
+inline float lightEnvelope(const Light& light, bool forceFast = false) {
+    constexpr float kInfinite = std::numeric_limits<float>::infinity();
+    if (light.controlled) return light.type == LightType::Sun ? kInfinite : light.controlled->falloffEnd;
+    if (!(light.fast || forceFast) || light.type == LightType::Sun || light.falloffTolerance <= 0) return kInfinite;
+    switch (light.type) {
+        case LightType::Point:
+        case LightType::Spot:
+            if (light.linear) return std::max(0.f, (light.photons / 8000.0f - light.falloffTolerance) / light.fade);
+            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance);
+        case LightType::Area:
+            // Beyond this distance the inverse-square estimate of the emitter is below tolerance.
+            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance) + 16.0f;
+        default:
+            return kInfinite;
+    }
+}
+
+// Whether any point of `bounds` lies inside the light's envelope (suns and unbounded lights: always).
+inline bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
+    if (light.type == LightType::Sun) return true;
+    const float envelope = lightEnvelope(light, forceFast);
+    if (!std::isfinite(envelope)) return true;
+    const Vec3 nearest = vmin(vmax(light.origin, bounds.mins), bounds.maxs);
+    return distance(nearest, light.origin) < envelope;
+}
 
 }  // namespace q3::light

@@ -198,22 +198,4 @@ std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<Lig
     return out;
 }
 
-float lightEnvelope(const Light& light, bool forceFast) {
-    constexpr float kInfinite = std::numeric_limits<float>::infinity();
-    if (light.controlled) return light.type == LightType::Sun ? kInfinite : light.controlled->falloffEnd;
-    if (!(light.fast || forceFast) || light.type == LightType::Sun || light.falloffTolerance <= 0) return kInfinite;
-    switch (light.type) {
-        case LightType::Point:
-        case LightType::Spot:
-            if (light.linear) return std::max(0.f, (light.photons / 8000.0f - light.falloffTolerance) / light.fade);
-            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance);
-        case LightType::Area: {
-            // Beyond this distance the inverse-square estimate of the emitter is below tolerance.
-            return std::sqrt(std::max(0.f, light.photons) / light.falloffTolerance) + 16.0f;
-        }
-        default:
-            return kInfinite;
-    }
-}
-
 }  // namespace q3::light

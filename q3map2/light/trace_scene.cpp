@@ -120,18 +120,27 @@ Vec3 translucentProduct(std::span<const TranslucentHit> sorted) {
     return result;
 }
 
-RTCRay makeRay(Vec3 from, Vec3 direction, float tnear, float tfar) {
-    RTCRay ray{};
+// Fills `ray` in place (building a temporary and copying it stalls on store forwarding in the
+// batch loops).
+void setRay(RTCRay& ray, Vec3 from, Vec3 direction, float tnear, float tfar, unsigned id = 0,
+            uint32_t mask = kAllShadowGroups) {
     ray.org_x = from.x;
     ray.org_y = from.y;
     ray.org_z = from.z;
+    ray.tnear = tnear;
     ray.dir_x = direction.x;
     ray.dir_y = direction.y;
     ray.dir_z = direction.z;
-    ray.tnear = tnear;
+    ray.time = 0;
     ray.tfar = tfar;
-    ray.mask = 0xFFFFFFFFu;
+    ray.mask = mask;
+    ray.id = id;
     ray.flags = 0;
+}
+
+RTCRay makeRay(const ShadowRay& r, float tfar) {
+    RTCRay ray;
+    setRay(ray, r.from, r.direction, r.tnear, tfar, 0, r.mask);
     return ray;
 }
 
@@ -153,7 +162,7 @@ struct TraceScene::EmbreeState {
 };
 
 bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOptions& options) {
-    if (surface.triangles.empty() || !surface.castShadows) return false;
+    if (surface.triangles.empty() || surface.castShadows == 0) return false;
     if (surface.isPatch && !options.patchShadows) return false;
     const LightingShader* sh = surface.shader;
     if (!sh) return true;
@@ -171,9 +180,17 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     embree_->scene = newScene(embree_->device);
     embree_->skyScene = newScene(embree_->device);
 
+    groupOfBit_ = {1};
+    for (const SceneSurface& s : surfaces) {
+        const int group = std::abs(s.castShadows);
+        if (castsShadow(s, options) && group != 1 && groupOfBit_.size() < 32 &&
+            std::find(groupOfBit_.begin(), groupOfBit_.end(), group) == groupOfBit_.end())
+            groupOfBit_.push_back(group);
+    }
     for (const SceneSurface& s : surfaces) {
         if (!castsShadow(s, options)) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryMask(geom, groupBit(s.castShadows));
         const size_t numVerts = s.xyz.size();
         const size_t numTris = s.triangles.size() / 3;
         auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -222,6 +239,20 @@ uint64_t TraceScene::raysTraced() const {
     return total;
 }
 
+uint32_t TraceScene::groupBit(int castShadows) const {
+    const int group = std::abs(castShadows);
+    for (size_t bit = 0; bit < groupOfBit_.size(); ++bit)
+        if (groupOfBit_[bit] == group) return 1u << bit;
+    return groupOfBit_.size() >= 32 ? 1u << 31 : 0u;
+}
+
+uint32_t TraceScene::receiverMask(int receiveShadows) const {
+    if (receiveShadows == 0) return 0;
+    if (receiveShadows == 1) return groupBit(1);
+    if (receiveShadows > 1) return groupBit(1) | groupBit(receiveShadows);
+    return groupBit(receiveShadows);
+}
+
 std::optional<ShadowRay> TraceScene::segmentRay(Vec3 from, Vec3 to, float ignoreNear) {
     const Vec3 d = to - from;
     const float dist = length(d);
@@ -229,21 +260,25 @@ std::optional<ShadowRay> TraceScene::segmentRay(Vec3 from, Vec3 to, float ignore
     // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
     const float tfar = dist - std::min(0.01f, dist * 0.5f);
     if (tfar <= ignoreNear) return std::nullopt;
-    return ShadowRay{from, d / dist, std::max(ignoreNear, 0.0f), tfar, false, -1};
+    return ShadowRay{from, d / dist, std::max(ignoreNear, 0.0f), tfar, false, -1, kAllShadowGroups};
 }
 
 ShadowRay TraceScene::skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) {
     return ShadowRay{from, normalize(direction), std::max(ignoreNear, 0.0f), std::numeric_limits<float>::infinity(),
-                     true, skyIndex};
+                     true, skyIndex, kAllShadowGroups};
 }
 
-Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear) const {
-    const std::optional<ShadowRay> ray = segmentRay(from, to, ignoreNear);
-    return ray ? traceOne(*ray) : Vec3{1, 1, 1};
+Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear, uint32_t mask) const {
+    std::optional<ShadowRay> ray = segmentRay(from, to, ignoreNear);
+    if (!ray) return Vec3{1, 1, 1};
+    ray->mask = mask;
+    return traceOne(*ray);
 }
 
-Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) const {
-    return traceOne(skyRay(from, direction, skyIndex, ignoreNear));
+Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear, uint32_t mask) const {
+    ShadowRay ray = skyRay(from, direction, skyIndex, ignoreNear);
+    ray.mask = mask;
+    return traceOne(ray);
 }
 
 void TraceScene::countRays(size_t n) const {
@@ -260,7 +295,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     if (r.toSky) {
         if (skyRecords_.empty()) return {};
         RTCRayHit rh{};
-        rh.ray = makeRay(r.from, r.direction, r.tnear, r.tfar);
+        rh.ray = makeRay(r, r.tfar);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(embree_->skyScene, &plain, &rh);
@@ -268,7 +303,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
         tfar = rh.ray.tfar;
     } else if (!skyRecords_.empty()) {
-        RTCRay ray = makeRay(r.from, r.direction, r.tnear, tfar);
+        RTCRay ray = makeRay(r, tfar);
         rtcOccluded1(embree_->skyScene, &plain, &ray);
         if (ray.tfar < 0) return {};  // sky surfaces block point-light rays like walls
     }
@@ -277,7 +312,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     rtcInitIntersectContext(&ctx.base);
     ctx.records = &records_;
     ctx.hits = &hits;
-    RTCRay ray = makeRay(r.from, r.direction, r.tnear, tfar);
+    RTCRay ray = makeRay(r, tfar);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
@@ -316,13 +351,12 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     size_t numToSky = 0, numOcclusion = 0;
     for (size_t i = 0; i < n; ++i) {
         const ShadowRay& r = rays[i];
-        RTCRay ray = makeRay(r.from, r.direction, r.tnear, r.tfar);
-        ray.id = static_cast<unsigned>(i);
         if (!r.toSky) {
-            occlusionBuffer[numOcclusion++] = ray;
+            setRay(occlusionBuffer[numOcclusion++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
+                   r.mask);
         } else if (!skyRecords_.empty()) {
             RTCRayHit& rh = toSkyBuffer[numToSky++];
-            rh.ray = ray;
+            setRay(rh.ray, r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i), r.mask);
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         }

@@ -33,13 +33,16 @@ struct SceneSurface {
     std::vector<float> st;             // 2 per vertex (texture coordinates), may be empty
     std::vector<uint32_t> triangles;   // 3 indices per triangle
     bool isPatch = false;
-    bool castShadows = true;           // shadow group of its entity (.srf castShadows, _castShadows)
+    int castShadows = 1;               // shadow group (.srf castShadows, _castShadows); 0 = casts nothing
     int skyIndex = -1;                 // sky index of its shader (only meaningful for sky surfaces)
 };
 
 struct TraceSceneOptions {
     bool patchShadows = false;  // -patchshadows: tessellated patches cast shadows
 };
+
+// Every shadow group: the ray mask of rays that any caster may block.
+constexpr uint32_t kAllShadowGroups = 0xFFFFFFFFu;
 
 // One shadow ray: a segment [tnear, tfar] towards a light, or (toSky) a ray towards a sun that
 // must end on a sky surface of `skyIndex` (-1 = any sky).
@@ -50,6 +53,7 @@ struct ShadowRay {
     float tfar = 0;
     bool toSky = false;
     int skyIndex = -1;
+    uint32_t mask = kAllShadowGroups;  // shadow groups that may block it (TraceScene::receiverMask)
 };
 
 class TraceScene {
@@ -67,11 +71,17 @@ public:
 
     // Colour transmitted from `from` to `to` (1 1 1 = unobstructed, 0 0 0 = blocked). Occluders
     // closer than `ignoreNear` to `from` are ignored. Sky surfaces block like any wall.
-    Vec3 transmission(Vec3 from, Vec3 to, float ignoreNear = 0) const;
+    Vec3 transmission(Vec3 from, Vec3 to, float ignoreNear = 0, uint32_t mask = kAllShadowGroups) const;
 
     // Colour transmitted from `from` along `direction` (unit) to the sky. Zero unless the first
     // opaque surface met is a sky surface whose index matches `skyIndex` (-1 accepts any sky).
-    Vec3 skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0) const;
+    Vec3 skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0,
+                         uint32_t mask = kAllShadowGroups) const;
+
+    // Ray mask of a receiver in shadow group `receiveShadows`, with q3map2's rules: group 1 (the
+    // world) is shadowed by casters of group 1 only; a group above 1 by group 1 and its own casters;
+    // a negative group by casters whose group has the same magnitude; 0 by nothing.
+    uint32_t receiverMask(int receiveShadows) const;
 
     // The ray transmission() traces from `from` to `to`; nullopt when nothing can block it.
     static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0);
@@ -80,6 +90,10 @@ public:
     // Transmission of many rays at once (out[i] for rays[i]), exactly as one call per ray would give,
     // traced as Embree ray streams: cheaper per ray when the rays are coherent.
     void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
+
+    // Casters of the same group magnitude share one bit of the Embree geometry mask (bit 0 for
+    // group 1); beyond 31 other groups, the last bit is shared.
+    uint32_t groupBit(int castShadows) const;
 
     size_t casterCount() const { return records_.size() + skyRecords_.size(); }
     uint64_t raysTraced() const;
@@ -96,7 +110,7 @@ public:
 
 private:
 
-    static constexpr size_t kBatchChunk = 256;
+    static constexpr size_t kBatchChunk = 64;
     Vec3 traceOne(const ShadowRay& ray) const;
     void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
     void countRays(size_t n) const;
@@ -105,6 +119,7 @@ private:
     std::unique_ptr<EmbreeState> embree_;
     std::vector<Record> records_;     // casters other than sky, indexed by Embree geometry id
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
+    std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {

@@ -4,6 +4,7 @@
 // above. Both read lump 18 or the BSPX lump LIGHTGRID_SH through the engine runtime of libs/sh.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -13,6 +14,8 @@
 #include "image.h"
 #include "log.h"
 #include "option_table.h"
+#include "option_parser.h"
+#include "sh_cubemap.h"
 #include "sh_grid_runtime.h"
 
 namespace q3::shtools {
@@ -59,6 +62,28 @@ std::vector<std::string> formatProbeReport(const ProbeReport& report);
 Image renderProbeImage(const sh::GridRuntime& grid, float z, int probePixels, float exposure);
 // The grid's middle height.
 float middleHeight(const sh::GridSH& grid);
+
+// -shcubemap [options] PX NX PY NY PZ NZ: six face images (any format the image library decodes; the
+// face orientation of sh_cubemap.h) projected onto L2 SH radiance and convolved to irradiance.
+struct ShCubemapOptions {
+    std::array<std::string, 6> faces;  // +X -X +Y -Y +Z -Z
+    float scale = 1;                   // radiance = byte / 255 * scale
+};
+const cli::OptionTable<ShCubemapOptions>& shCubemapOptionTable();
+struct CubemapReport {
+    int faceSize = 0;
+    sh::SH9Color radiance;
+    sh::SH9Color irradiance;
+};
+// A decoded image as a face (bytes / 255 * scale); FileError naming `name` unless it is square.
+sh::CubeFaceImage toCubeFace(const Image& image, float scale, const std::string& name, const char* faceName);
+// Reads and decodes the six files; FileError naming the file for unreadable, non-square or
+// mismatched faces.
+sh::Cubemap loadCubemap(const std::array<std::string, 6>& files, float scale);
+CubemapReport projectCubemapFiles(const std::array<std::string, 6>& files, float scale);
+std::vector<std::string> formatCubemapReport(const CubemapReport& report);
+// Everything after the -shcubemap switch: options, then the six faces.
+int runShCubemapCommand(std::span<const std::string> stageArgs, const cli::ParseContext& context, Log& log);
 
 int runShProbeStage(const ShProbeOptions& options, const CommonOptions& common, Log& log);
 int runShImageStage(const ShImageOptions& options, const CommonOptions& common, Log& log);

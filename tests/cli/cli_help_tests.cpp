@@ -141,7 +141,9 @@ TEST(CliHelp, HelpTextAndParserAgree) {
             }
         }
     }
-    EXPECT_EQ(parsedImplemented, 46u);  // the implemented names, aliases included
+    size_t implementedNames = 0;  // aliases included
+    for (const cli::OptionInfo& option : infos) implementedNames += option.implemented ? option.names.size() : 0;
+    EXPECT_EQ(parsedImplemented, implementedNames);
     EXPECT_GT(refused, 60u);
 }
 

@@ -50,7 +50,7 @@ TEST(TraceScene, NonCastingSurfaces) {
     EXPECT_TRUE(TraceScene::castsShadow(quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, &filter), {}));
     EXPECT_FALSE(TraceScene::castsShadow(patch, {}));
     SceneSurface quiet = quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
-    quiet.castShadows = false;
+    quiet.castShadows = 0;
     EXPECT_FALSE(TraceScene::castsShadow(quiet, {}));
     EXPECT_TRUE(TraceScene::castsShadow(patch, TraceSceneOptions{.patchShadows = true}));
 
@@ -58,6 +58,52 @@ TEST(TraceScene, NonCastingSurfaces) {
     TraceScene scene(s, {});
     EXPECT_EQ(scene.casterCount(), 0u);
     EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 100, 0}), (Vec3{1, 1, 1}));
+}
+
+// q3map2's shadow groups: which casters block a receiver of each _receiveShadows value.
+TEST(TraceScene, ShadowGroupsPickTheCasters) {
+    SceneSurface world = quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128});     // plane y = 50, group 1
+    SceneSurface grouped = quad({-64, 150, -64}, {128, 0, 0}, {0, 0, 128});  // plane y = 150, group 2
+    grouped.castShadows = 2;
+    TraceScene scene({world, grouped}, {});
+    auto blockedBy = [&](int receive, Vec3 from, Vec3 to) {
+        return scene.transmission(from, to, 0, scene.receiverMask(receive)) == Vec3{};
+    };
+    const Vec3 o{0, 0, 0}, pastWorld{0, 100, 0}, pastGroup{0, 200, 0}, betweenWalls{0, 100, 0};
+    // Group 1 (the world) receives from world casters only.
+    EXPECT_TRUE(blockedBy(1, o, pastWorld));
+    EXPECT_FALSE(blockedBy(1, betweenWalls, pastGroup));
+    // Group 2 receives from the world and from its own group; group 3 from the world only.
+    EXPECT_TRUE(blockedBy(2, o, pastWorld));
+    EXPECT_TRUE(blockedBy(2, betweenWalls, pastGroup));
+    EXPECT_TRUE(blockedBy(3, o, pastWorld));
+    EXPECT_FALSE(blockedBy(3, betweenWalls, pastGroup));
+    // Negative groups receive from casters of the same magnitude only.
+    EXPECT_TRUE(blockedBy(-2, betweenWalls, pastGroup));
+    EXPECT_FALSE(blockedBy(-2, o, pastWorld));
+    EXPECT_TRUE(blockedBy(-1, o, pastWorld));
+    // Group 0 receives no shadows; the default mask sees every caster.
+    EXPECT_EQ(scene.receiverMask(0), 0u);
+    EXPECT_EQ(scene.transmission(betweenWalls, pastGroup), (Vec3{0, 0, 0}));
+    // Batches carry each ray's mask.
+    std::vector<ShadowRay> batch;
+    for (int receive : {1, 2, 3, -2}) {
+        ShadowRay r = *TraceScene::segmentRay(betweenWalls, pastGroup);
+        r.mask = scene.receiverMask(receive);
+        batch.push_back(r);
+    }
+    std::vector<Vec3> out(batch.size());
+    scene.traceBatch(batch, out);
+    EXPECT_EQ(out, (std::vector<Vec3>{{1, 1, 1}, {0, 0, 0}, {1, 1, 1}, {0, 0, 0}}));
+    // Sun rays obey the same groups.
+    LightingShader sky;
+    sky.sky = true;
+    SceneSurface ceiling = quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0);
+    SceneSurface roof = quad({-64, -64, 300}, {128, 0, 0}, {0, 128, 0});
+    roof.castShadows = 4;
+    TraceScene sunScene({ceiling, roof}, {});
+    EXPECT_EQ(sunScene.skyTransmission({0, 0, 0}, {0, 0, 1}, 0, 0, sunScene.receiverMask(1)), (Vec3{1, 1, 1}));
+    EXPECT_EQ(sunScene.skyTransmission({0, 0, 0}, {0, 0, 1}, 0, 0, sunScene.receiverMask(4)), (Vec3{0, 0, 0}));
 }
 
 TEST(TraceScene, SunOnlyThroughItsOwnSky) {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 #include <cstring>
 
@@ -45,6 +47,11 @@ TEST(BspTree, LeafClusterArea) {
     bsp::Bsp noCluster = b;
     noCluster.leafs[0].cluster = -1;
     EXPECT_EQ(BspTree(noCluster).leafForPoint({0.05f, 0, 0}), 1);
+    // Non-finite points (from hostile vertex data) lie in no leaf, and the walk ends at once.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(tree.leafForPoint({nan, 0, 0}), -1);
+    EXPECT_EQ(tree.clusterForPoint({0, std::numeric_limits<float>::infinity(), 0}), -1);
+    EXPECT_LT(tree.clusterForPointExt({nan, nan, nan}, 0), 0);
 }
 
 TEST(BspTree, Visibility) {

@@ -169,6 +169,41 @@ TEST(ShTrace, AreaLightSampledOverItsSurface) {
     }
 }
 
+// The pieces of a close emitter are shadowed together by the legacy grid's one ray: the SH grid sees
+// the light exactly when the legacy grid does, and a blocker cannot hide only some pieces.
+TEST(ShTrace, AreaLightPiecesShareTheLegacyShadowRay) {
+    const Vec3 corner{-48, -48, 0}, edgeU{96, 0, 0}, edgeV{0, 96, 0};
+    Light area;
+    area.type = LightType::Area;
+    area.normal = {0, 0, 1};
+    area.winding = {corner, corner + edgeV, corner + edgeU + edgeV, corner + edgeU};
+    area.origin = Vec3{0, 0, 0} + area.normal;
+    area.planeDist = dot(area.origin, area.normal);
+    area.add = 3000;
+    area.photons = 1;
+    const Vec3 point{0, 0, 40};
+    sh::SH9Color open;
+    ASSERT_TRUE(addLightToGridPointSH(open, area, point, -1, LightingEnv{}));
+
+    // A small plate on the centre ray hides the emitter from both grids.
+    std::vector<SceneSurface> plate{test::quad({-4, -4, 20}, {8, 0, 0}, {0, 8, 0})};
+    TraceScene blocked(plate, {});
+    LightingEnv env;
+    env.scene = &blocked;
+    sh::SH9Color hidden;
+    EXPECT_FALSE(addLightToGridPointSH(hidden, area, point, -1, env));
+    EXPECT_FALSE(lightToGridPoint(area, point, -1, env));
+    EXPECT_EQ(hidden.c[0][0], 0.0);
+
+    // A plate over one corner of the emitter leaves the centre ray free: the whole emitter counts.
+    std::vector<SceneSurface> side{test::quad({20, 20, 20}, {30, 0, 0}, {0, 30, 0})};
+    TraceScene partial(side, {});
+    env.scene = &partial;
+    sh::SH9Color seen;
+    ASSERT_TRUE(addLightToGridPointSH(seen, area, point, -1, env));
+    for (int k = 0; k < 9; ++k) EXPECT_DOUBLE_EQ(seen.c[k][0], open.c[k][0]);
+}
+
 struct SkyScene {
     LightingShader skyShader;
     std::vector<SceneSurface> surfaces;

@@ -180,5 +180,83 @@ TEST(Progress, ConsoleDotsGoThroughTheLog) {
     EXPECT_EQ(seen.back(), '\n');
 }
 
+std::string readBack(std::FILE* file) {
+    std::fflush(file);
+    std::rewind(file);
+    std::string text;
+    char buffer[256];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, file)) > 0;) text.append(buffer, n);
+    return text;
+}
+
+TEST(Progress, ConsoleThatIsATerminalShowsTheBarWithElapsedTimeAndEta) {
+    Log log(false);
+    std::string logged;
+    log.addSink([&](LogLevel, std::string_view text) { logged += text; });
+    std::FILE* terminal = std::tmpfile();
+    ASSERT_NE(terminal, nullptr);
+    FakeClock clock;
+    {
+        Progress progress = Progress::forConsole(log, 8, true, ProgressConsole{terminal, true, clock.clock()});
+        clock.now = clock.now + 30.0;
+        progress.advance(2);  // 25% after 30 s: 90 s to go
+        clock.now = clock.now + 0.05;
+        progress.advance(2);  // within a tenth of a second of the last redraw: not drawn
+        clock.now = clock.now + 89.95;
+        progress.advance(4);
+    }
+    const std::string bar = "\r[........................................]    0%  0:00 elapsed, ETA --:--"
+                            "\r[##########..............................]   25%  0:30 elapsed, ETA 1:30"
+                            "\r[########################################]  100%  2:00 elapsed, ETA 0:00"
+                            "\r[########################################]  100%  2:00 elapsed, ETA 0:00\n";
+    EXPECT_EQ(readBack(terminal), bar);
+    std::fclose(terminal);
+    EXPECT_EQ(logged, "");  // carriage returns stay out of the log and the NetRadiant stream
+}
+
+TEST(Progress, ConsoleThatIsNotATerminalPrintsDotsToTheLogOnly) {
+    Log log(false);
+    std::string logged;
+    log.addSink([&](LogLevel, std::string_view text) { logged += text; });
+    std::FILE* file = std::tmpfile();
+    ASSERT_NE(file, nullptr);
+    FakeClock clock;
+    {
+        Progress progress = Progress::forConsole(log, 8, true, ProgressConsole{file, false, clock.clock()});
+        progress.advance(4);
+        EXPECT_EQ(logged, "0...1...2...3...4...5");
+        clock.now = clock.now + 7.9;
+        progress.advance(4);
+    }
+    EXPECT_EQ(logged, kFullDots + " (7)\n");
+    EXPECT_EQ(readBack(file), "");
+    std::fclose(file);
+}
+
+TEST(Progress, HiddenConsoleProgressPrintsNothingAnywhere) {
+    Log log(false);
+    std::string logged;
+    log.addSink([&](LogLevel, std::string_view text) { logged += text; });
+    std::FILE* terminal = std::tmpfile();
+    ASSERT_NE(terminal, nullptr);
+    FakeClock clock;
+    {
+        Progress progress = Progress::forConsole(log, 8, false, ProgressConsole{terminal, true, clock.clock()});
+        progress.advance(8);
+    }
+    EXPECT_EQ(readBack(terminal), "");
+    std::fclose(terminal);
+    EXPECT_EQ(logged, "");
+}
+
+TEST(Progress, ConsoleOfAFileIsNotATerminal) {
+    std::FILE* file = std::tmpfile();
+    ASSERT_NE(file, nullptr);
+    ProgressConsole console = ProgressConsole::of(file);
+    EXPECT_EQ(console.stream, file);
+    EXPECT_FALSE(console.isTerminal);
+    std::fclose(file);
+}
+
 }  // namespace
 }  // namespace q3

@@ -10,30 +10,13 @@
 
 #include "file_io.h"
 #include "run_stats.h"
+#include "stats_schema.h"
 #include "test_data.h"
 
 namespace q3 {
 namespace {
 
-const std::filesystem::path kSchemaPath = std::filesystem::path(Q3MAP_SOURCE_DIR) / "docs/stats-schema.json";
-
-rapidjson::Document parseJson(const std::string& text) {
-    rapidjson::Document doc;
-    doc.Parse(text.c_str(), text.size());
-    EXPECT_FALSE(doc.HasParseError()) << "not JSON:\n" << text;
-    return doc;
-}
-
-// Empty when the document follows the schema, else where it breaks it.
-std::string schemaViolation(const rapidjson::Document& doc) {
-    static const rapidjson::Document schemaDoc = parseJson(readFileText(kSchemaPath));
-    static const rapidjson::SchemaDocument schema(schemaDoc);
-    rapidjson::SchemaValidator validator(schema);
-    if (doc.Accept(validator)) return "";
-    rapidjson::StringBuffer where;
-    validator.GetInvalidDocumentPointer().StringifyUriFragment(where);
-    return std::string(validator.GetInvalidSchemaKeyword()) + " at " + where.GetString();
-}
+rapidjson::Document parseJson(const std::string& text) { return test::parseJsonText(text); }
 
 RunStats sampleStats() {
     RunStats stats;
@@ -60,7 +43,7 @@ TEST(RunStats, WrittenFileValidatesAndHoldsTheValues) {
     std::string text = readFileText(path);
     EXPECT_EQ(text, runStatsToJson(stats));
     rapidjson::Document doc = parseJson(text);
-    EXPECT_EQ(schemaViolation(doc), "");
+    EXPECT_EQ(test::statsSchemaViolation(doc), "");
 
     EXPECT_EQ(doc["format"].GetInt(), kRunStatsFormat);
     EXPECT_STREQ(doc["stage"].GetString(), "light");
@@ -89,7 +72,7 @@ TEST(RunStats, EmptySummaryValidatesWithNullGrids) {
     RunStats stats;
     stats.stage = "bsp";
     rapidjson::Document doc = parseJson(runStatsToJson(stats));
-    EXPECT_EQ(schemaViolation(doc), "");
+    EXPECT_EQ(test::statsSchemaViolation(doc), "");
     EXPECT_TRUE(doc["grids"]["legacy"].IsNull());
     EXPECT_TRUE(doc["grids"]["sh"].IsNull());
     EXPECT_EQ(doc["phases"].Size(), 0u);
@@ -100,7 +83,7 @@ TEST(RunStats, NonFiniteTimesAreWrittenAsZero) {
     stats.totalSeconds = std::nan("");
     stats.phases[0].seconds = 1.0 / 0.0;
     rapidjson::Document doc = parseJson(runStatsToJson(stats));
-    EXPECT_EQ(schemaViolation(doc), "");
+    EXPECT_EQ(test::statsSchemaViolation(doc), "");
     EXPECT_EQ(doc["totalSeconds"].GetDouble(), 0.0);
     EXPECT_EQ(doc["phases"][0]["seconds"].GetDouble(), 0.0);
 }
@@ -134,7 +117,7 @@ TEST(RunStats, SchemaRejectsBrokenSummaries) {
     auto broken = [&](auto&& edit) {
         rapidjson::Document doc = parseJson(good);
         edit(doc);
-        return schemaViolation(doc);
+        return test::statsSchemaViolation(doc);
     };
     EXPECT_NE(broken([](auto& d) { d.RemoveMember("warnings"); }), "");
     EXPECT_NE(broken([](auto& d) { d["warnings"].SetInt(-1); }), "");

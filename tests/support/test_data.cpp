@@ -116,4 +116,13 @@ int runCommand(const std::string& commandLine, std::string* output) {
     return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
 }
 
+std::string shellQuote(const std::string& word) {
+    std::string quoted = "'";
+    for (char c : word) {
+        if (c == '\'') quoted += "'\\''";
+        else quoted += c;
+    }
+    return quoted + "'";
+}
+
 }  // namespace q3::test

@@ -36,4 +36,9 @@ std::filesystem::path q3map2Exe();
 // Runs a command line through /bin/sh, capturing stdout+stderr. Returns the exit code.
 int runCommand(const std::string& commandLine, std::string* output = nullptr);
 
+// `word` in single quotes for a shell command line (embedded single quotes escaped).
+std::string shellQuote(const std::string& word);
+inline std::string shellQuote(const char* word) { return shellQuote(std::string(word)); }
+inline std::string shellQuote(const std::filesystem::path& path) { return shellQuote(path.string()); }
+
 }  // namespace q3::test

@@ -1,0 +1,111 @@
+#include "dirt.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "light_random.h"
+
+namespace q3::light {
+
+namespace {
+constexpr int kDirtAzimuthSteps = 16;
+constexpr int kDirtElevationSteps = 3;
+constexpr float kDirtConeDegrees = 88;
+}  // namespace
+
+DirtSettings dirtSettingsFromOptions(const LightOptions& options) {
+    DirtSettings s;
+    s.mode = options.dirtMode;
+    s.depth = options.dirtDepth;
+    s.scale = options.dirtScale;
+    s.gain = options.dirtGain;
+    s.debug = options.dirtDebug;
+    return s;
+}
+
+const std::vector<Vec3>& dirtConeDirections() {
+    static const std::vector<Vec3> directions =
+        coneDirections(kDirtAzimuthSteps, kDirtElevationSteps, kDirtConeDegrees);
+    return directions;
+}
+
+uint64_t dirtSeed(Vec3 origin) {
+    uint32_t bits[3];
+    std::memcpy(&bits[0], &origin.x, 4);
+    std::memcpy(&bits[1], &origin.y, 4);
+    std::memcpy(&bits[2], &origin.z, 4);
+    SplitMix mix((uint64_t{bits[0]} << 32) ^ (uint64_t{bits[1]} << 16) ^ bits[2] ^ 0xD1B54A32D192ED03ull);
+    return mix.next();
+}
+
+float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed) {
+    Vec3 right, up;
+    tangentFrame(normal, right, up);
+    const float depth = settings.depth;
+    const std::vector<Vec3>& cone = dirtConeDirections();
+    std::vector<Vec3> directions;
+    directions.reserve(cone.size() + 1);
+    if (settings.mode == 1) {
+        SplitMix random(seed);
+        for (size_t i = 0; i < cone.size(); ++i) {
+            const float azimuth = random.unit() * degToRad(360.0f);
+            const float elevation = random.unit() * degToRad(kDirtConeDegrees);
+            const Vec3 local{std::cos(azimuth) * std::sin(elevation), std::sin(azimuth) * std::sin(elevation),
+                             std::cos(elevation)};
+            directions.push_back(toFrame(local, right, up, normal));
+        }
+    } else {
+        for (const Vec3& local : cone) directions.push_back(toFrame(local, right, up, normal));
+    }
+    directions.push_back(normal);
+    std::vector<RayHit> hits(directions.size());
+    scene.nearestMany(origin, directions, 0.0f, depth, hits);
+    // Only opaque, non-sky surfaces within the depth darken.
+    float gathered = 0;
+    for (const RayHit& hit : hits)
+        if (hit.hit && !hit.sky) gathered += 1.0f - hit.distance / depth;
+    if (gathered <= 0) return 1.0f;
+    float dirt = std::min(1.0f, std::pow(gathered / static_cast<float>(cone.size() + 1), settings.gain));
+    dirt = std::min(1.0f, dirt * settings.scale);
+    return 1.0f - dirt;
+}
+
+std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
+                                   const HitScene& scene, const DirtSettings& settings, bool noDirty) {
+    const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
+    std::vector<float> raw(count, 0.0f);
+    for (size_t i = 0; i < count && i < points.size(); ++i) {
+        if (!points[i]) continue;
+        raw[i] = noDirty ? 1.0f
+                         : dirtForSample(points[i]->origin, points[i]->normal, scene, settings,
+                                         dirtSeed(points[i]->origin));
+    }
+    // Smoothing reads the unsmoothed factors (q3map2 smooths in place, so its result depends on
+    // the scan order; reading a copy keeps the 3x3 mean symmetric).
+    std::vector<float> smoothed = raw;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            if (!points[i]) continue;
+            float sum = raw[i], samples = 1;
+            for (int sy = y - 1; sy <= y + 1; ++sy)
+                for (int sx = x - 1; sx <= x + 1; ++sx) {
+                    if (sx < 0 || sy < 0 || sx >= width || sy >= height || (sx == x && sy == y)) continue;
+                    const size_t j = static_cast<size_t>(sy) * static_cast<size_t>(width) + static_cast<size_t>(sx);
+                    if (!points[j] || raw[j] <= 0) continue;
+                    sum += raw[j];
+                    samples += 1;
+                }
+            smoothed[i] = sum / samples;
+        }
+    return smoothed;
+}
+
+void applyDirt(LuxelImage& image, const std::vector<float>& dirt, bool debug) {
+    for (size_t i = 0; i < image.color.size() && i < dirt.size(); ++i) {
+        if (image.state[i] != LuxelState::Mapped) continue;
+        image.color[i] = debug ? Vec3::splat(dirt[i] * 255.0f) : image.color[i] * dirt[i];
+    }
+}
+
+}  // namespace q3::light

@@ -1,0 +1,49 @@
+// Dirt mapping (q3map2 -dirty): ambient occlusion that darkens luxels by how close the geometry
+// around them is. Each sample casts 48 rays in a cone of 88 degrees around its normal plus one along
+// it; each ray that meets a surface within `depth` adds 1 - distance/depth, and
+//   dirt = 1 - min(1, min(1, (sum / 49)^gain) * scale)
+// multiplies the luxel. Rays that reach sky do not darken (q3map2's ordered mode counted them; see
+// NetRadiant-custom issue 101). The factors of a raw lightmap are smoothed over 3x3 neighbours.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "hit_scene.h"
+#include "light_contribution.h"
+#include "light_options.h"
+#include "lightmap_filter.h"
+
+namespace q3::light {
+
+struct DirtSettings {
+    int mode = 0;         // 0 ordered cone, 1 random directions in the same cone
+    float depth = 128;    // ray length
+    float scale = 1;
+    float gain = 1;       // exponent
+    bool debug = false;   // -dirtdebug: the luxel becomes dirt * 255 grey
+};
+
+DirtSettings dirtSettingsFromOptions(const LightOptions& options);
+
+// The 48 ordered cone directions around +z (16 azimuths x 3 elevations within 88 degrees).
+const std::vector<Vec3>& dirtConeDirections();
+
+// Dirt factor (0 black .. 1 untouched) of one sample. `seed` drives the random directions of mode 1
+// (the same seed always gives the same directions).
+float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed);
+
+// Seed of a sample's random directions, from its position (independent of thread scheduling).
+uint64_t dirtSeed(Vec3 origin);
+
+// Dirt of every luxel of a raw lightmap (width x height, row-major `points`; nullopt = unmapped,
+// which gets 0). `noDirty` (q3map_noDirty) gives 1 everywhere. Then each mapped luxel takes the mean
+// of itself and its mapped 3x3 neighbours with dirt > 0, as q3map2's smoothing.
+std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
+                                   const HitScene& scene, const DirtSettings& settings, bool noDirty);
+
+// Multiplies every luxel by its dirt (or, with settings.debug, replaces it by dirt * 255 grey).
+void applyDirt(LuxelImage& image, const std::vector<float>& dirt, bool debug);
+
+}  // namespace q3::light

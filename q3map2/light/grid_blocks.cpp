@@ -1,0 +1,66 @@
+// Block decomposition of light grids (see grid_blocks.h).
+#include "grid_blocks.h"
+
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <algorithm>
+
+#include "progress.h"
+
+namespace q3::light {
+
+std::vector<GridBlock> gridBlocks(std::array<int, 3> bounds, int edge) {
+    std::vector<GridBlock> blocks;
+    edge = std::max(1, edge);
+    if (bounds[0] <= 0 || bounds[1] <= 0 || bounds[2] <= 0) return blocks;
+    for (int z = 0; z < bounds[2]; z += edge)
+        for (int y = 0; y < bounds[1]; y += edge)
+            for (int x = 0; x < bounds[0]; x += edge) {
+                GridBlock b;
+                b.first = {x, y, z};
+                b.end = {std::min(x + edge, bounds[0]), std::min(y + edge, bounds[1]), std::min(z + edge, bounds[2])};
+                blocks.push_back(b);
+            }
+    return blocks;
+}
+
+Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margin) {
+    Bounds b;
+    for (int axis = 0; axis < 3; ++axis) {
+        b.mins[axis] = mins[axis] + float(block.first[axis]) * size[axis] - margin;
+        b.maxs[axis] = mins[axis] + float(block.end[axis] - 1) * size[axis] + margin;
+    }
+    return b;
+}
+
+void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, bool forceFast,
+                        std::vector<uint32_t>& out) {
+    out.clear();
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, forceFast))
+            out.push_back(static_cast<uint32_t>(i));
+}
+
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin, bool forceFast,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint) {
+    const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
+    const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
+    auto body = [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<uint32_t> candidates;
+        for (size_t b = range.begin(); b != range.end(); ++b) {
+            const GridBlock& block = blocks[b];
+            gridLightsReaching(lights, gridBlockBounds(block, grid.mins, grid.size, margin), forceFast, candidates);
+            block.forEachPoint([&](int x, int y, int z) {
+                const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
+                                  grid.mins.z + float(z) * grid.size.z};
+                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, candidates);
+            });
+            progress.advance(block.pointCount());
+        }
+    };
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
+}
+
+}  // namespace q3::light

@@ -1,0 +1,62 @@
+// Grid points are lit block by block (a few points along each axis), so that the lights whose
+// envelope cannot reach a block are dropped once for the whole block instead of once per point.
+// Shared by the legacy grid and the SH grid; results do not depend on the block size because the
+// surviving lights keep their order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "lights.h"
+#include "vec3.h"
+
+namespace q3 {
+class Progress;
+}
+
+namespace q3::light {
+
+struct GridBlock {
+    std::array<int, 3> first{};  // first point index per axis
+    std::array<int, 3> end{};    // one past the last
+    template <typename Visit>
+    void forEachPoint(Visit&& visit) const {
+        for (int z = first[2]; z < end[2]; ++z)
+            for (int y = first[1]; y < end[1]; ++y)
+                for (int x = first[0]; x < end[0]; ++x) visit(x, y, z);
+    }
+    uint64_t pointCount() const {
+        return uint64_t(end[0] - first[0]) * uint64_t(end[1] - first[1]) * uint64_t(end[2] - first[2]);
+    }
+};
+
+// Blocks of up to `edge` points per axis covering a grid of `bounds` points, z-major order.
+std::vector<GridBlock> gridBlocks(std::array<int, 3> bounds, int edge);
+
+// World bounds of a block's points (`mins` + index * `size`), grown by `margin` on every side.
+Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margin);
+
+// Indices, in light order, of the lights that may light a grid point inside `bounds`: they affect
+// the grid and their envelope reaches the box.
+void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, bool forceFast,
+                        std::vector<uint32_t>& out);
+
+// A grid to light: `bounds` points per axis at `mins` + index * `size`.
+struct GridLattice {
+    std::array<int, 3> bounds{};
+    Vec3 mins;
+    Vec3 size;
+};
+
+// Calls lightPoint(index, origin, candidates) for every point (index = x + y*bx + z*bx*by), in
+// parallel over blocks of `blockEdge` points per axis (`threads` 0 = one per core). `candidates`
+// are the lights whose envelope reaches the block grown by `margin` (how far a point may be
+// nudged). Each point is visited once, so results written per index do not depend on the threads.
+using GridPointFn = std::function<void(size_t index, Vec3 origin, std::span<const uint32_t> candidates)>;
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin, bool forceFast,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint);
+
+}  // namespace q3::light

@@ -1,0 +1,341 @@
+// -shgather (see grid_sh_gather.h): a closest-hit Embree scene of the drawn surfaces, and per probe
+// a fixed set of rays whose reflected radiance is projected onto L2 SH. The shadow scene of
+// trace_scene.h answers occlusion only; the gather needs the hit surface, triangle and barycentrics,
+// so it keeps a scene of its own, built from the same SceneSurface list.
+#include "grid_sh_gather.h"
+
+#include <embree3/rtcore.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+#include "grid_sh.h"
+#include "light_context.h"
+#include "light_text.h"
+#include "patch.h"
+#include "shader_info.h"
+#include "vfs_image.h"
+
+namespace q3::light {
+namespace {
+
+constexpr float kRayStart = 0.25f;          // skip the probe's own position
+constexpr double kGoldenAngle = 2.39996322972865332;  // pi * (3 - sqrt(5))
+
+// A surface that hits can land on.
+struct HitRecord {
+    int surfaceNum = -1;
+    bool sky = false;
+    const SceneSurface* geometry = nullptr;
+    const ShaderAlbedo* albedo = nullptr;
+    const BakedSurfaceLight* baked = nullptr;  // lightmapped surfaces
+    std::vector<std::array<float, 2>> luxelCoords;  // lightmapped: luxel coordinate per scene vertex
+    std::vector<Vec3> vertexLight;             // vertex-lit surfaces: stored colours, per scene vertex
+    Vec3 meanLight;                            // where no per-point value exists
+};
+
+bool gathersFrom(const SceneSurface& s) {
+    if (s.triangles.empty() || s.xyz.empty()) return false;
+    if (!s.shader) return true;
+    if (s.shader->sky) return true;
+    return !s.shader->nodraw && !s.shader->fog && !s.shader->translucent;
+}
+
+// Luxel coordinates of the vertices of a patch's lighting tessellation (the mesh of SceneSurface).
+// The lightmap of a curved patch is linear in control-point index space (lightmap_layout.cpp):
+// luxel = (width - 1) / (patchWidth - 1) * controlIndex + 0.5 per axis. The control index of each
+// tessellated vertex comes from tessellating the control grid with st = its (column, row).
+std::vector<std::array<float, 2>> patchLuxelCoords(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset,
+                                                   const BakedSurfaceLight& baked, size_t sceneVertices) {
+    if (s.patchWidth < 2 || s.patchHeight < 2) return {};
+    patch::ControlGrid grid;
+    grid.width = s.patchWidth;
+    grid.height = s.patchHeight;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const size_t vi = size_t(s.firstVert + v);
+        if (vi >= bsp.drawVerts.size()) return {};
+        patch::PatchVertex pv;
+        pv.xyz = Vec3::fromArray(bsp.drawVerts[vi].xyz) + offset;  // as the scene built it
+        pv.normal = Vec3::fromArray(bsp.drawVerts[vi].normal);
+        pv.st[0] = float(v % s.patchWidth);
+        pv.st[1] = float(v / s.patchWidth);
+        grid.points.push_back(pv);
+    }
+    if (!patch::isValidGrid(grid)) return {};
+    const patch::PatchMesh mesh = patch::tessellateForLighting(grid);
+    if (mesh.verts.size() != sceneVertices) return {};
+    const float sBasis = float(baked.width - 1) / float(s.patchWidth - 1);
+    const float tBasis = float(baked.height - 1) / float(s.patchHeight - 1);
+    std::vector<std::array<float, 2>> out;
+    out.reserve(mesh.verts.size());
+    for (const patch::PatchVertex& v : mesh.verts) out.push_back({sBasis * v.st[0] + 0.5f, tBasis * v.st[1] + 0.5f});
+    return out;
+}
+
+Vec3 meanOf(std::span<const Vec3> values) {
+    Vec3 sum;
+    for (const Vec3& v : values) sum += v;
+    return values.empty() ? Vec3{} : sum / float(values.size());
+}
+
+}  // namespace
+
+std::vector<Vec3> gatherDirections(int count) {
+    std::vector<Vec3> out;
+    out.reserve(size_t(std::max(0, count)));
+    for (int i = 0; i < count; ++i) {
+        // z at the centre of the i-th of `count` equal-area bands, azimuth advanced by the golden angle.
+        const double z = 1.0 - (2.0 * i + 1.0) / double(count);
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const double phi = kGoldenAngle * i;
+        out.push_back({float(r * std::cos(phi)), float(r * std::sin(phi)), float(z)});
+    }
+    return out;
+}
+
+std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<LightImage>& images, Log& log) {
+    std::vector<ShaderAlbedo> out(ctx.bsp.shaders.size());
+    if (!ctx.vfs || !ctx.shaderTable) return out;
+    images.clear();
+    images.reserve(ctx.bsp.shaders.size());  // pointers into it stay valid
+    int missing = 0;
+    for (size_t i = 0; i < ctx.bsp.shaders.size(); ++i) {
+        const std::string name(ctx.bsp.shaders[i].name, strnlen(ctx.bsp.shaders[i].name, sizeof(ctx.bsp.shaders[i].name)));
+        const ShaderInfo& info = ctx.shaderTable->find(name);
+        for (const std::string& candidate : info.lightImageCandidates()) {
+            std::optional<LoadedImage> loaded;
+            try {
+                loaded = loadImage(*ctx.vfs, candidate);
+            } catch (const std::exception& e) {
+                log.warning(e.what());
+            }
+            if (!loaded || loaded->image.width <= 0) continue;
+            LightImage image;
+            image.width = loaded->image.width;
+            image.height = loaded->image.height;
+            image.rgba = std::move(loaded->image.rgba);
+            images.push_back(std::move(image));
+            out[i].image = &images.back();
+            out[i].average = images.back().averageColor();
+            break;
+        }
+        if (!out[i].image) ++missing;
+    }
+    if (missing > 0) log.info(strCat("SH gather: ", missing, " shaders without an image use 0.5 grey albedo"));
+    return out;
+}
+
+struct GatherScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<HitRecord> records;  // by Embree geometry id
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+GatherScene::GatherScene(const LightContext& ctx, std::span<const ShaderAlbedo> albedo) : impl_(std::make_unique<Impl>()) {
+    impl_->device = rtcNewDevice(nullptr);
+    if (!impl_->device) throw CompileError("SH gather: Embree device could not be created");
+    impl_->scene = rtcNewScene(impl_->device);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    static const ShaderAlbedo kDefaultAlbedo;
+    for (const SceneSurface& s : ctx.surfaces) {
+        if (!gathersFrom(s)) continue;
+        HitRecord rec;
+        rec.surfaceNum = s.surfaceNum;
+        rec.sky = s.shader && s.shader->sky;
+        rec.geometry = &s;
+        const bsp::Surface* bs = s.surfaceNum >= 0 && size_t(s.surfaceNum) < ctx.bsp.surfaces.size()
+                                     ? &ctx.bsp.surfaces[size_t(s.surfaceNum)]
+                                     : nullptr;
+        rec.albedo = bs && bs->shaderNum >= 0 && size_t(bs->shaderNum) < albedo.size() ? &albedo[size_t(bs->shaderNum)]
+                                                                                      : &kDefaultAlbedo;
+        if (s.surfaceNum >= 0 && size_t(s.surfaceNum) < ctx.bakedLight.size() &&
+            ctx.bakedLight[size_t(s.surfaceNum)].width > 0) {
+            rec.baked = &ctx.bakedLight[size_t(s.surfaceNum)];
+            rec.meanLight = meanOf(rec.baked->color);
+            if (!s.isPatch && rec.baked->vertexCoords.size() == s.xyz.size()) {
+                rec.luxelCoords = rec.baked->vertexCoords;
+            } else if (s.isPatch && bs) {
+                const Vec3 offset =
+                    size_t(s.surfaceNum) < ctx.surfaceOffsets.size() ? ctx.surfaceOffsets[size_t(s.surfaceNum)] : Vec3{};
+                rec.luxelCoords = patchLuxelCoords(ctx.bsp, *bs, offset, *rec.baked, s.xyz.size());
+            }
+        } else if (bs) {
+            // Vertex-lit: the colours lightVertexes stored (bytes, the same scale as legacy light).
+            std::vector<Vec3> colors;
+            for (int v = 0; v < bs->numVerts; ++v) {
+                const size_t vi = size_t(bs->firstVert + v);
+                if (vi >= ctx.bsp.drawVerts.size()) break;
+                const uint8_t* c = ctx.bsp.drawVerts[vi].color;
+                colors.push_back({float(c[0]), float(c[1]), float(c[2])});
+            }
+            rec.meanLight = meanOf(colors);
+            if (!s.isPatch && colors.size() == s.xyz.size()) rec.vertexLight = std::move(colors);
+        }
+        RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.xyz.size()));
+        for (size_t v = 0; v < s.xyz.size(); ++v) {
+            vb[3 * v] = s.xyz[v].x;
+            vb[3 * v + 1] = s.xyz[v].y;
+            vb[3 * v + 2] = s.xyz[v].z;
+        }
+        const size_t triangles = s.triangles.size() / 3;
+        auto* ib = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+        std::copy(s.triangles.begin(), s.triangles.begin() + long(triangles * 3), ib);
+        rtcCommitGeometry(geom);
+        const unsigned id = rtcAttachGeometry(impl_->scene, geom);
+        rtcReleaseGeometry(geom);
+        if (id >= impl_->records.size()) impl_->records.resize(id + 1);
+        impl_->records[id] = std::move(rec);
+    }
+    rtcCommitScene(impl_->scene);
+}
+
+GatherScene::~GatherScene() = default;
+
+namespace {
+
+// Reflected radiance of the surface hit at (primID, u, v) of record `rec`.
+sh::Rgb reflectedAt(const HitRecord& rec, unsigned prim, float u, float v) {
+    if (rec.sky) return {};  // sky and suns are direct light, already in TraceGridSH
+    const SceneSurface& s = *rec.geometry;
+    const uint32_t i0 = s.triangles[3 * size_t(prim)], i1 = s.triangles[3 * size_t(prim) + 1],
+                   i2 = s.triangles[3 * size_t(prim) + 2];
+    const float w1 = u, w2 = v, w0 = 1.0f - w1 - w2;
+
+    Vec3 albedo = rec.albedo->average;
+    if (rec.albedo->image && s.st.size() >= 2 * s.xyz.size()) {
+        const float ts = w0 * s.st[2 * i0] + w1 * s.st[2 * i1] + w2 * s.st[2 * i2];
+        const float tt = w0 * s.st[2 * i0 + 1] + w1 * s.st[2 * i1 + 1] + w2 * s.st[2 * i2 + 1];
+        const uint8_t* t = rec.albedo->image->texel(ts, tt);
+        albedo = Vec3{float(t[0]), float(t[1]), float(t[2])} / 255.0f;
+    }
+
+    Vec3 light = rec.meanLight;
+    if (rec.baked && !rec.luxelCoords.empty()) {
+        const BakedSurfaceLight& b = *rec.baked;
+        const auto& c = rec.luxelCoords;
+        const float x = w0 * c[i0][0] + w1 * c[i1][0] + w2 * c[i2][0];
+        const float y = w0 * c[i0][1] + w1 * c[i1][1] + w2 * c[i2][1];
+        const int lx = std::clamp(int(std::floor(x)), 0, b.width - 1);
+        const int ly = std::clamp(int(std::floor(y)), 0, b.height - 1);
+        light = b.color[size_t(ly) * size_t(b.width) + size_t(lx)];
+    } else if (!rec.vertexLight.empty()) {
+        light = rec.vertexLight[i0] * w0 + rec.vertexLight[i1] * w1 + rec.vertexLight[i2] * w2;
+    }
+    // Lambertian reflection: radiance = albedo * irradiance / pi, irradiance in legacy units.
+    const double k = 1.0 / (sh::kPi * 255.0);
+    return {albedo.x * light.x * k, albedo.y * light.y * k, albedo.z * light.z * k};
+}
+
+}  // namespace
+
+sh::Rgb GatherScene::radianceAlong(Vec3 origin, Vec3 direction) const {
+    sh::Rgb out;
+    radianceAlong(origin, {&direction, 1}, {&out, 1});
+    return out;
+}
+
+void GatherScene::radianceAlong(Vec3 origin, std::span<const Vec3> directions, std::span<sh::Rgb> out) const {
+    // Packets of 16 rays from one origin: they share their first traversal steps.
+    constexpr size_t kPacket = 16;
+    for (size_t first = 0; first < directions.size(); first += kPacket) {
+        const size_t count = std::min(kPacket, directions.size() - first);
+        alignas(64) int valid[kPacket];
+        alignas(64) RTCRayHit16 rh;
+        for (size_t k = 0; k < kPacket; ++k) {
+            const bool used = k < count;
+            const Vec3 d = used ? directions[first + k] : Vec3{0, 0, 1};
+            valid[k] = used ? -1 : 0;
+            rh.ray.org_x[k] = origin.x;
+            rh.ray.org_y[k] = origin.y;
+            rh.ray.org_z[k] = origin.z;
+            rh.ray.dir_x[k] = d.x;
+            rh.ray.dir_y[k] = d.y;
+            rh.ray.dir_z[k] = d.z;
+            rh.ray.tnear[k] = kRayStart;
+            rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+            rh.ray.mask[k] = 0xFFFFFFFFu;
+            rh.ray.time[k] = 0;
+            rh.ray.flags[k] = 0;
+            rh.ray.id[k] = unsigned(k);
+            rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcIntersect16(valid, impl_->scene, &context, &rh);
+        for (size_t k = 0; k < count; ++k) {
+            const unsigned geom = rh.hit.geomID[k];
+            out[first + k] = geom == RTC_INVALID_GEOMETRY_ID || geom >= impl_->records.size()
+                                 ? sh::Rgb{}
+                                 : reflectedAt(impl_->records[geom], rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k]);
+        }
+    }
+}
+
+sh::SH9Color gatherProbe(const GatherScene& scene, Vec3 origin, std::span<const Vec3> directions) {
+    sh::SH9Color radiance;
+    if (directions.empty()) return radiance;
+    const double weight = 4.0 * sh::kPi / double(directions.size());
+    std::vector<sh::Rgb> seen(directions.size());
+    scene.radianceAlong(origin, directions, seen);
+    for (size_t k = 0; k < directions.size(); ++k) {
+        const sh::Rgb& l = seen[k];
+        if (l.r == 0 && l.g == 0 && l.b == 0) continue;
+        const Vec3& d = directions[k];
+        sh::addRadianceSample(radiance, {d.x, d.y, d.z}, l, weight);
+    }
+    return sh::convolveRadianceToIrradiance(radiance);
+}
+
+ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
+                               const ShTraceStats& traced, Log& log) {
+    const auto start = std::chrono::steady_clock::now();
+    const GatherScene scene(ctx, albedo);
+    const std::vector<Vec3> directions = gatherDirections(ctx.options.shGatherSamples);
+    const size_t numPoints = grid.points.size();
+    const double gridScale = ctx.options.gridScale;
+    std::vector<uint8_t> gathered(numPoints, 0);
+
+    auto body = [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            if (i >= traced.origins.size() || (i < traced.solid.size() && traced.solid[i])) continue;
+            const Vec3 origin = traced.origins[i];  // where TraceGridSH lit it (nudged out of solid)
+            const sh::SH9Color indirect = sh::scale(gatherProbe(scene, origin, directions), gridScale);
+            sh::GridPointSH& p = grid.points[i];
+            for (int k = 0; k < sh::kCoeffCount; ++k)
+                for (int ch = 0; ch < 3; ++ch) p.coeffs[k][ch] = float(double(p.coeffs[k][ch]) + indirect.c[k][ch]);
+            gathered[i] = 1;
+        }
+    };
+    tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, numPoints, 16), body); });
+
+    // Points in solid took their value from free neighbours before the gather: take it again.
+    std::vector<uint8_t> unset(numPoints, 0);
+    for (size_t i = 0; i < numPoints && i < traced.solid.size(); ++i) unset[i] = traced.solid[i];
+    fillFromNeighbours(grid.points, unset, {grid.bounds[0], grid.bounds[1], grid.bounds[2]});
+
+    ShGatherStats stats;
+    for (uint8_t t : gathered) stats.probes += t;
+    stats.rays = stats.probes * directions.size();
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log.info(strCat("SH gather: ", stats.probes, " probes x ", directions.size(), " rays = ", stats.rays, " rays in ",
+                    stats.seconds, " s (", stats.seconds > 0 ? uint64_t(double(stats.rays) / stats.seconds) : 0,
+                    " rays/s)"));
+    return stats;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,99 @@
+// -shgather: the indirect light of every SH probe, gathered from the lit map after the lightmaps.
+// Each probe traces a fixed set of directions (spherical Fibonacci, equal solid angle 4 pi / N)
+// to the nearest surface; what a ray brings back is the surface's reflected light, i.e. its baked
+// light (lightmap luxel at the hit, or vertex colour for vertex-lit surfaces) times its albedo (the
+// texel of its image at the hit) over pi. The samples are projected onto L2 SH radiance, convolved
+// to irradiance and added to the probe.
+//
+// Split between direct and indirect (docs/sh-for-mappers.md): TraceGridSH already holds every
+// light source seen from the probe (point, spot and sun lights, sky light, surface lights), so
+// the gather leaves out what a ray would see of them: emission of surface-light shaders and the
+// sky add nothing here. Only light that has been reflected once by a surface is gathered, so
+// nothing is counted twice.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "lights.h"
+#include "sh.h"
+#include "sh_grid_lump.h"
+#include "vec3.h"
+
+namespace q3 {
+class Log;
+}
+
+namespace q3::light {
+
+struct ShTraceStats;
+
+struct LightContext;
+struct ShGridLayout;
+
+// The linear light of one lightmapped surface as baked by lightLightmaps (BSP luxels, legacy units
+// 0..255+, before the colour pipeline), with the luxel coordinate of each of its draw vertices.
+struct BakedSurfaceLight {
+    int width = 0, height = 0;  // 0 = not lightmapped
+    std::vector<Vec3> color;
+    std::vector<std::array<float, 2>> vertexCoords;
+};
+
+// What a ray that hits a surface of a shader reflects: its texture image (nullptr: the average
+// is used) and the image's average colour, both 0..1.
+struct ShaderAlbedo {
+    const LightImage* image = nullptr;
+    Vec3 average{0.5f, 0.5f, 0.5f};
+};
+
+// The albedo of every BSP shader: the first image of the shader's light-image candidates that
+// loads (editor image, then the shader name), texel colour / 255. Shaders without an image get
+// 0.5 grey. `images` owns the loaded images.
+std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<LightImage>& images, Log& log);
+
+// N unit directions of a spherical Fibonacci set: equal-area cells, deterministic.
+std::vector<Vec3> gatherDirections(int count);
+
+struct ShGatherStats {
+    uint64_t probes = 0;
+    uint64_t rays = 0;
+    double seconds = 0;
+};
+
+// Adds the gathered indirect irradiance (times -gridscale) to every point of `grid` not marked in
+// `solid`, then refills the points in solid from their neighbours (as TraceGridSH does). Parallel
+// over probes; each probe sums its own rays in a fixed order, so the result does not depend on the
+// thread count.
+// `traced` holds where TraceGridSH lit each probe (ShTraceStats::solid and ::origins).
+ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
+                               const ShTraceStats& traced, Log& log);
+
+// The indirect SH irradiance at one point (no -gridscale), exposed for tests and measurements.
+class GatherScene;
+sh::SH9Color gatherProbe(const GatherScene& scene, Vec3 origin, std::span<const Vec3> directions);
+
+// The closest-hit scene of the gather: every drawn surface of ctx.surfaces (sky included, as a
+// surface that reflects nothing), with what a hit needs to know.
+class GatherScene {
+public:
+    GatherScene(const LightContext& ctx, std::span<const ShaderAlbedo> albedo);
+    ~GatherScene();
+    GatherScene(const GatherScene&) = delete;
+    GatherScene& operator=(const GatherScene&) = delete;
+
+    // Radiance (SH units: 1.0 = legacy 255, per steradian) reflected towards `origin` by the
+    // nearest surface along `direction`; zero when the ray escapes or hits sky. Emitting surfaces
+    // send only the light they reflect, never their emission (that is direct light).
+    sh::Rgb radianceAlong(Vec3 origin, Vec3 direction) const;
+    // The same for many directions from one origin (out[i] for directions[i]), traced in packets.
+    void radianceAlong(Vec3 origin, std::span<const Vec3> directions, std::span<sh::Rgb> out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace q3::light

@@ -1,0 +1,129 @@
+#include "hit_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "log.h"
+
+namespace q3::light {
+
+struct HitScene::EmbreeState {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+};
+
+HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
+    : embree_(std::make_unique<EmbreeState>()) {
+    embree_->device = rtcNewDevice(nullptr);
+    if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
+    embree_->scene = rtcNewScene(embree_->device);
+    rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+    for (const SceneSurface& s : surfaces) {
+        if (!TraceScene::castsShadow(s, options)) continue;
+        const LightingShader* sh = s.shader;
+        const bool sky = sh && sh->sky;
+        if (!sky && sh && (sh->alphaShadow || sh->lightFilter)) continue;  // filters never stop these rays
+        const size_t numVerts = s.xyz.size();
+        const size_t numTris = s.triangles.size() / 3;
+        RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), numVerts));
+        for (size_t i = 0; i < numVerts; ++i) s.xyz[i].toArray(vb + i * 3);
+        auto* ib = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), numTris));
+        for (size_t i = 0; i < numTris * 3; ++i) ib[i] = s.triangles[i] < numVerts ? s.triangles[i] : 0u;
+        rtcCommitGeometry(geom);
+        const unsigned id = rtcAttachGeometry(embree_->scene, geom);
+        rtcReleaseGeometry(geom);
+        if (skyGeometry_.size() <= id) skyGeometry_.resize(id + 1, 0);
+        skyGeometry_[id] = sky ? 1 : 0;
+    }
+    rtcCommitScene(embree_->scene);
+    if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
+        throw CompileError("embree: building the nearest-hit scene failed");
+}
+
+HitScene::~HitScene() {
+    if (embree_->scene) rtcReleaseScene(embree_->scene);
+    if (embree_->device) rtcReleaseDevice(embree_->device);
+}
+
+namespace {
+RTCRayHit makeRayHit(Vec3 from, Vec3 direction, float tnear, float tfar) {
+    RTCRayHit rh{};
+    rh.ray.org_x = from.x;
+    rh.ray.org_y = from.y;
+    rh.ray.org_z = from.z;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.tnear = tnear;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
+RayHit toRayHit(const RTCRayHit& rh, const std::vector<uint8_t>& skyGeometry) {
+    RayHit out;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+    out.hit = true;
+    out.distance = rh.ray.tfar;
+    out.sky = rh.hit.geomID < skyGeometry.size() && skyGeometry[rh.hit.geomID] != 0;
+    return out;
+}
+}  // namespace
+
+RayHit HitScene::nearest(Vec3 from, Vec3 direction, float tnear, float tfar) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh = makeRayHit(from, direction, tnear, tfar);
+    rtcIntersect1(embree_->scene, &context, &rh);
+    return toRayHit(rh, skyGeometry_);
+}
+
+void HitScene::nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
+                           std::span<RayHit> out) const {
+    constexpr size_t kChunk = 64;
+    RTCRayHit rays[kChunk];
+    for (size_t start = 0; start < directions.size(); start += kChunk) {
+        const size_t n = std::min(kChunk, directions.size() - start);
+        for (size_t i = 0; i < n; ++i) rays[i] = makeRayHit(from, directions[start + i], tnear, tfar);
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect1M(embree_->scene, &context, rays, static_cast<unsigned>(n), sizeof(RTCRayHit));
+        for (size_t i = 0; i < n && start + i < out.size(); ++i) out[start + i] = toRayHit(rays[i], skyGeometry_);
+    }
+}
+
+void tangentFrame(Vec3 normal, Vec3& right, Vec3& up) {
+    if (normal.x == 0 && normal.y == 0 && (normal.z == 1 || normal.z == -1)) {
+        right = normal.z == 1 ? Vec3{1, 0, 0} : Vec3{-1, 0, 0};
+        up = Vec3{0, 1, 0};
+        return;
+    }
+    right = normalize(cross(normal, Vec3{0, 0, 1}));
+    up = normalize(cross(right, normal));
+}
+
+std::vector<Vec3> coneDirections(int azimuthSteps, int elevationSteps, float coneDegrees) {
+    std::vector<Vec3> out;
+    const float azimuthStep = degToRad(360.0f / static_cast<float>(azimuthSteps));
+    const float elevationStep = degToRad(coneDegrees / static_cast<float>(elevationSteps));
+    for (int i = 0; i < azimuthSteps; ++i) {
+        const float azimuth = azimuthStep * static_cast<float>(i);
+        for (int j = 0; j < elevationSteps; ++j) {
+            const float elevation = elevationStep * (0.5f + static_cast<float>(j));
+            out.push_back({std::sin(elevation) * std::cos(azimuth), std::sin(elevation) * std::sin(azimuth),
+                           std::cos(elevation)});
+        }
+    }
+    return out;
+}
+
+}  // namespace q3::light

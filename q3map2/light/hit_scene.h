@@ -1,0 +1,56 @@
+// The nearest-hit view of the shadow-casting world that dirt mapping and floodlight need: they ask
+// not only whether a ray is blocked but how far away the blocker is and whether it is sky. Built
+// from the same surfaces and rules as TraceScene; surfaces that only filter light (alphashadow,
+// lightfilter) do not stop these rays.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "trace_scene.h"
+#include "vec3.h"
+
+namespace q3::light {
+
+struct RayHit {
+    bool hit = false;  // something was met within [tnear, tfar]
+    float distance = 0;
+    bool sky = false;  // the surface met is a sky surface
+};
+
+class HitScene {
+public:
+    // Throws CompileError when Embree cannot be initialised.
+    HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options);
+    ~HitScene();
+    HitScene(const HitScene&) = delete;
+    HitScene& operator=(const HitScene&) = delete;
+
+    // Nearest surface along `direction` (unit) from `from` between tnear and tfar.
+    RayHit nearest(Vec3 from, Vec3 direction, float tnear, float tfar) const;
+    // The same for many directions from one point (out[i] for directions[i]), traced together as an
+    // Embree ray stream; each result equals what nearest() gives for that direction.
+    void nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
+                     std::span<RayHit> out) const;
+
+private:
+    struct EmbreeState;
+    std::unique_ptr<EmbreeState> embree_;
+    std::vector<uint8_t> skyGeometry_;  // per Embree geometry id: 1 = sky surface
+};
+
+// Orthonormal (right, up) pair around `normal`, chosen as q3map2's dirt and floodlight code does so
+// that ray patterns match: fixed axes for straight up/down normals, else built from world up.
+void tangentFrame(Vec3 normal, Vec3& right, Vec3& up);
+
+// q3map2's ordered cone of directions around +z: `azimuthSteps` azimuths from 0, and for each
+// `elevationSteps` elevations centred in equal slices of `coneDegrees` (azimuth-major order).
+std::vector<Vec3> coneDirections(int azimuthSteps, int elevationSteps, float coneDegrees);
+
+// A cone direction (around +z) turned into the frame of `normal`.
+inline Vec3 toFrame(Vec3 local, Vec3 right, Vec3 up, Vec3 normal) {
+    return right * local.x + up * local.y + normal * local.z;
+}
+
+}  // namespace q3::light

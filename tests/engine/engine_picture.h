@@ -1,0 +1,43 @@
+// Measures on engine screenshots: how bright a picture is, how much of it is lit, and where two
+// shots of the same view differ (a model drawn into one of them).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include "image.h"
+
+namespace q3::enginetest {
+
+// Rec. 709 luma of an 8-bit RGB pixel, 0..255.
+double luminance(const uint8_t* rgb);
+
+struct PictureStats {
+    double meanLuminance = 0;  // over every pixel, 0..255
+    double litFraction = 0;    // share of pixels brighter than the black level
+    size_t pixels = 0;
+};
+
+// A pixel at or below this luma counts as black: it leaves room for dithering and the dark grey
+// a software rasteriser can leave in unlit corners.
+inline constexpr double kBlackLevel = 8.0;
+
+PictureStats pictureStats(const Image& image);
+
+// The pixels where two same-sized shots of one view differ by more than `tolerance` in some
+// channel (1) - where a model was drawn into one of them. Throws std::invalid_argument for
+// pictures of different sizes.
+std::vector<uint8_t> differenceMask(const Image& a, const Image& b, int tolerance);
+
+// How many pixels a mask selects and their mean luma in `image` (0 when none).
+struct MaskedStats {
+    size_t pixels = 0;
+    double meanLuminance = 0;
+};
+MaskedStats maskedStats(const Image& image, const std::vector<uint8_t>& mask);
+
+// Reads and decodes a PNG (an engine screenshot). Throws FileError / ImageError.
+Image readPng(const std::filesystem::path& path);
+
+}  // namespace q3::enginetest

@@ -1,0 +1,259 @@
+// Dirt mapping: the ray pattern, the per-sample formula against a hand computation, sky hits that do
+// not darken, the 3x3 smoothing, and the whole stage darkening a corner but not an open floor nor a
+// floor next to sky.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dirt.h"
+#include "quality_scene.h"
+
+namespace q3::light {
+namespace {
+
+SceneSurface sceneQuad(Vec3 corner, Vec3 edgeU, Vec3 edgeV, const LightingShader* shader = nullptr) {
+    SceneSurface s;
+    s.shader = shader;
+    s.xyz = {corner, corner + edgeU, corner + edgeU + edgeV, corner + edgeV};
+    s.triangles = {0, 1, 2, 0, 2, 3};
+    return s;
+}
+
+// Floor 512 x 512 at z = 0 and a wall in the plane x = 0 (y 0..512, z 0..256).
+std::vector<SceneSurface> cornerScene(const LightingShader* wallShader = nullptr) {
+    return {sceneQuad({0, 0, 0}, {512, 0, 0}, {0, 512, 0}), sceneQuad({0, 0, 0}, {0, 512, 0}, {0, 0, 256}, wallShader)};
+}
+
+// Sum of 1 - t/depth over q3map2's 48 cone rays (16 azimuths x 3 elevations in 88 degrees) and the
+// normal ray, for a point at height 1 and distance d from the wall x = 0, normal +z.
+float expectedDirt(float d, float depth, float gain, float scale) {
+    double gathered = 0;
+    for (int i = 0; i < 16; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double azimuth = i * (2 * M_PI / 16), elevation = (j + 0.5) * (88.0 / 3) * M_PI / 180;
+            const double dx = std::sin(elevation) * std::cos(azimuth);
+            if (dx >= 0) continue;
+            const double t = d / -dx;
+            if (t <= depth) gathered += 1 - t / depth;
+        }
+    if (gathered <= 0) return 1;
+    double dirt = std::min(1.0, std::pow(gathered / 49, static_cast<double>(gain)));
+    dirt = std::min(1.0, dirt * scale);
+    return static_cast<float>(1 - dirt);
+}
+
+TEST(LightQualityOptions, ParseIntoSettingsAndAreImplemented) {
+    const LightOptions o = quality::lightOptions({"-dirty", "-dirtmode", "1", "-dirtdepth", "64", "-dirtscale", "2",
+                                                  "-dirtgain", "0.5", "-debugdirt", "-floodlight", "-lowquality",
+                                                  "-export", "-lightmapatlas", "pages.png"});
+    const DirtSettings d = dirtSettingsFromOptions(o);
+    EXPECT_TRUE(o.dirty);
+    EXPECT_EQ(d.mode, 1);
+    EXPECT_EQ(d.depth, 64.0f);
+    EXPECT_EQ(d.scale, 2.0f);
+    EXPECT_EQ(d.gain, 0.5f);
+    EXPECT_TRUE(d.debug);
+    EXPECT_TRUE(o.floodlight && o.lowQuality && o.exportLightmaps);
+    EXPECT_EQ(o.lightmapAtlas, "pages.png");
+    EXPECT_THROW(quality::lightOptions({"-dirtmode", "2"}), cli::UsageError);
+    EXPECT_THROW(quality::lightOptions({"-dirtdepth", "0"}), cli::UsageError);
+    for (const auto& option : lightOptionTable()) {
+        for (const std::string& name : option.info.names) {
+            if (name.rfind("-dirt", 0) == 0 || name == "-dirty" || name == "-floodlight" || name == "-lowquality" ||
+                name == "-export" || name == "-lightmapatlas") {
+                EXPECT_TRUE(option.info.implemented) << name;
+            }
+        }
+    }
+}
+
+TEST(Dirt, ConeIs48DirectionsWithin88Degrees) {
+    const std::vector<Vec3>& cone = dirtConeDirections();
+    ASSERT_EQ(cone.size(), 48u);
+    for (const Vec3& d : cone) {
+        EXPECT_NEAR(length(d), 1.0f, 1e-5f);
+        EXPECT_GT(d.z, std::cos(degToRad(88)));
+    }
+    EXPECT_NEAR(std::acos(cone[0].z), degToRad(88.0f / 6), 1e-5f);  // first elevation: half a step
+    EXPECT_NEAR(std::acos(cone[2].z), degToRad(88.0f * 5 / 6), 1e-5f);
+    EXPECT_NEAR(std::atan2(cone[3].y, cone[3].x), degToRad(22.5f), 1e-5f);  // next azimuth
+}
+
+TEST(HitScene, NearestHitDistanceSkyAndStreamsAgree) {
+    LightingShader sky;
+    sky.sky = true;
+    std::vector<SceneSurface> surfaces = cornerScene();
+    surfaces.push_back(sceneQuad({512, 0, 0}, {0, 512, 0}, {0, 0, 256}, &sky));
+    HitScene scene(surfaces, {});
+    const RayHit wall = scene.nearest({100, 256, 10}, {-1, 0, 0}, 0, 1000);
+    EXPECT_TRUE(wall.hit);
+    EXPECT_NEAR(wall.distance, 100, 1e-3f);
+    EXPECT_FALSE(wall.sky);
+    const RayHit toSky = scene.nearest({100, 256, 10}, {1, 0, 0}, 0, 1000);
+    EXPECT_TRUE(toSky.sky);
+    EXPECT_NEAR(toSky.distance, 412, 1e-3f);
+    EXPECT_FALSE(scene.nearest({100, 256, 10}, {1, 0, 0}, 0, 400).hit);  // beyond tfar
+    EXPECT_FALSE(scene.nearest({100, 256, 10}, {0, 0, 1}, 0, 1000).hit);
+
+    std::vector<Vec3> directions;
+    for (int i = 0; i < 150; ++i)  // more than one stream chunk
+        directions.push_back(normalize(Vec3{std::cos(i * 0.37f), std::sin(i * 0.37f), 0.3f * std::sin(i * 1.3f)}));
+    std::vector<RayHit> many(directions.size());
+    scene.nearestMany({100, 256, 10}, directions, 0.5f, 300, many);
+    for (size_t i = 0; i < directions.size(); ++i) {
+        const RayHit one = scene.nearest({100, 256, 10}, directions[i], 0.5f, 300);
+        EXPECT_EQ(many[i].hit, one.hit) << i;
+        EXPECT_EQ(many[i].sky, one.sky) << i;
+        EXPECT_NEAR(many[i].distance, one.distance, 1e-4f) << i;
+    }
+}
+
+TEST(Dirt, OpenFloorIsUntouched) {
+    HitScene scene(cornerScene(), {});
+    EXPECT_EQ(dirtForSample({256, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0), 1.0f);
+}
+
+TEST(Dirt, SampleNearWallMatchesFormula) {
+    HitScene scene(cornerScene(), {});
+    DirtSettings s;
+    for (float d : {8.0f, 16.0f, 40.0f}) {
+        const float dirt = dirtForSample({d, 256, 1}, {0, 0, 1}, scene, s, 0);
+        EXPECT_NEAR(dirt, expectedDirt(d, 128, 1, 1), 1e-4f) << d;
+        EXPECT_LT(dirt, 0.95f) << d;
+    }
+    s.depth = 64;
+    s.gain = 2;
+    s.scale = 1.5f;
+    EXPECT_NEAR(dirtForSample({16, 256, 1}, {0, 0, 1}, scene, s, 0), expectedDirt(16, 64, 2, 1.5f), 1e-4f);
+    s.scale = 100;  // saturates: black
+    EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, scene, s, 0), 0.0f);
+}
+
+TEST(Dirt, SkyDoesNotDarken) {
+    LightingShader sky;
+    sky.sky = true;
+    HitScene skyScene(cornerScene(&sky), {});
+    HitScene wallScene(cornerScene(), {});
+    EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, skyScene, DirtSettings{}, 0), 1.0f);
+    EXPECT_LT(dirtForSample({16, 256, 1}, {0, 0, 1}, wallScene, DirtSettings{}, 0), 0.9f);
+    DirtSettings random;
+    random.mode = 1;
+    EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, skyScene, random, 7), 1.0f);
+}
+
+TEST(Dirt, RandomModeIsRepeatableAndDarkensCorners) {
+    HitScene scene(cornerScene(), {});
+    DirtSettings s;
+    s.mode = 1;
+    const Vec3 p{16, 256, 1};
+    const float a = dirtForSample(p, {0, 0, 1}, scene, s, dirtSeed(p));
+    const float b = dirtForSample(p, {0, 0, 1}, scene, s, dirtSeed(p));
+    EXPECT_EQ(a, b);
+    EXPECT_LT(a, 0.95f);
+    EXPECT_GT(a, 0.3f);
+    EXPECT_EQ(dirtForSample({256, 256, 1}, {0, 0, 1}, scene, s, dirtSeed({256, 256, 1})), 1.0f);
+    EXPECT_NE(dirtSeed({16, 256, 1}), dirtSeed({16, 272, 1}));
+}
+
+TEST(Dirt, LightmapSmoothsOverMappedNeighbours) {
+    HitScene scene(cornerScene(), {});
+    // A 4 x 1 row: near the wall, two open samples, and an unmapped luxel.
+    std::vector<std::optional<SamplePoint>> points(4);
+    points[0] = SamplePoint{{16, 256, 1}, {0, 0, 1}};
+    points[1] = SamplePoint{{256, 256, 1}, {0, 0, 1}};
+    points[2] = SamplePoint{{300, 256, 1}, {0, 0, 1}};
+    const float a = expectedDirt(16, 128, 1, 1);
+    const std::vector<float> dirt = dirtForLightmap(points, 4, 1, scene, DirtSettings{}, false);
+    ASSERT_EQ(dirt.size(), 4u);
+    EXPECT_NEAR(dirt[0], (a + 1) / 2, 1e-4f);
+    EXPECT_NEAR(dirt[1], (a + 1 + 1) / 3, 1e-4f);
+    EXPECT_NEAR(dirt[2], 1.0f, 1e-6f);
+    EXPECT_EQ(dirt[3], 0.0f);
+    const std::vector<float> clean = dirtForLightmap(points, 4, 1, scene, DirtSettings{}, true);
+    EXPECT_EQ(clean[0], 1.0f);
+    EXPECT_EQ(clean[1], 1.0f);
+
+    LuxelImage image(4, 1, LuxelState::Mapped);
+    image.state[3] = LuxelState::Unmapped;
+    for (Vec3& c : image.color) c = {100, 50, 10};
+    applyDirt(image, dirt, false);
+    EXPECT_NEAR(image.color[0].x, 100 * dirt[0], 1e-3f);
+    EXPECT_NEAR(image.color[0].z, 10 * dirt[0], 1e-3f);
+    EXPECT_EQ(image.color[3], (Vec3{100, 50, 10}));
+    applyDirt(image, dirt, true);
+    EXPECT_NEAR(image.color[0].y, 255 * dirt[0], 1e-3f);
+}
+
+// Floor (0..512)^2 with ambient 100; a wall at x = 0 and a sky wall at x = 512.
+bsp::Bsp cornerBsp(const std::string& floorShader) {
+    bsp::Bsp b = quality::emptyBsp({floorShader, "textures/test/wall", "textures/test/sky"});
+    quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);    // floor, normal +z
+    quality::addQuad(b, {0, 0, 0}, {0, 0, 256}, {0, 512, 0}, 1);    // wall, normal +x
+    quality::addQuad(b, {512, 0, 0}, {0, 512, 0}, {0, 0, 256}, 2);  // sky, normal -x
+    quality::finish(b, {{"_ambient", "100"}});
+    return b;
+}
+
+const char* kShaders =
+    "textures/test/sky\n{\n\tsurfaceparm sky\n\tsurfaceparm noimpact\n}\n"
+    "textures/test/clean\n{\n\tq3map_noDirty\n}\n";
+
+TEST(DirtStage, DarkensCornerButNotOpenFloorNorNextToSky) {
+    const bsp::Bsp b = cornerBsp("textures/test/floor");
+    const auto corner = quality::luxelNear(b, 0, {16, 256, 0});
+    const auto open = quality::luxelNear(b, 0, {256, 256, 0});
+    const auto nearSky = quality::luxelNear(b, 0, {496, 256, 0});
+    const auto path = quality::writeScene(b, "corner", kShaders);
+    ASSERT_EQ(quality::runLight(path, {}), 0);
+    const bsp::Bsp plain = bsp::readBsp(path);
+    const auto plainCorner = quality::texel(plain, 0, corner[0], corner[1]);
+    EXPECT_EQ(plainCorner, quality::texel(plain, 0, open[0], open[1]));
+
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, {"-dirty"}), 0);
+    const bsp::Bsp dirty = bsp::readBsp(path);
+    const auto c = quality::texel(dirty, 0, corner[0], corner[1]);
+    const auto o = quality::texel(dirty, 0, open[0], open[1]);
+    const auto s = quality::texel(dirty, 0, nearSky[0], nearSky[1]);
+    EXPECT_EQ(o, plainCorner) << "open floor keeps the ambient";
+    EXPECT_EQ(s, o) << "sky next to the floor does not darken it";
+    EXPECT_LT(c[0], o[0] * 0.85) << c[0] << " vs " << o[0];
+    // Exactly the ambient times the 3x3 mean of the per-sample dirt of the luxel columns at x = 0,
+    // 16 and 32 (luxel origins sit 1 unit above the floor; the one at x = 0 lies in the wall's plane,
+    // so every ray meets the wall at once and it is black).
+    HitScene scene(cornerScene(), {});
+    float sum = 0;
+    for (float x : {0.0f, 16.0f, 32.0f}) sum += dirtForSample({x, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0);
+    EXPECT_NEAR(c[0], 100.0f * sum / 3, 1.0f);
+
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, {"-dirty", "-dirtdebug"}), 0);
+    const bsp::Bsp debug = bsp::readBsp(path);
+    EXPECT_EQ(quality::texel(debug, 0, open[0], open[1])[0], 255);
+    EXPECT_LT(quality::texel(debug, 0, corner[0], corner[1])[0], 220);
+}
+
+TEST(DirtStage, NoDirtyShaderKeepsItsLight) {
+    const bsp::Bsp b = cornerBsp("textures/test/clean");
+    const auto corner = quality::luxelNear(b, 0, {16, 256, 0});
+    const auto open = quality::luxelNear(b, 0, {256, 256, 0});
+    const auto path = quality::writeScene(b, "clean", kShaders);
+    ASSERT_EQ(quality::runLight(path, {"-dirty", "-dirtscale", "4"}), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    EXPECT_EQ(quality::texel(lit, 0, corner[0], corner[1]), quality::texel(lit, 0, open[0], open[1]));
+    EXPECT_GT(quality::texel(lit, 0, open[0], open[1])[0], 90);
+}
+
+TEST(DirtStage, SameBytesWhateverTheThreadCount) {
+    const bsp::Bsp b = cornerBsp("textures/test/floor");
+    const auto path = quality::writeScene(b, "threads", kShaders);
+    const std::vector<std::string> args = {"-dirty", "-dirtmode", "1", "-floodlight", "-samples", "2"};
+    ASSERT_EQ(quality::runLight(path, args, 1), 0);
+    const std::vector<uint8_t> one = readFileBytes(path);
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, args, 2), 0);
+    EXPECT_EQ(readFileBytes(path), one);
+}
+
+}  // namespace
+}  // namespace q3::light
