@@ -12,6 +12,27 @@ namespace q3::json {
 
 namespace {
 
+// Runs a RapidJSON SAX parse of `text` (comments, trailing commas, numbers as strings) into
+// `handler`; a failure becomes one JsonError at its line and column, with the handler's own message
+// when it gave one.
+template <typename Handler>
+void parseStreaming(const std::string& name, const std::string& text, Handler& handler) {
+    constexpr unsigned flags = rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag |
+                               rapidjson::kParseNumbersAsStringsFlag | rapidjson::kParseStopWhenDoneFlag;
+    rapidjson::StringStream stream(text.c_str());
+    rapidjson::Reader reader;
+    rapidjson::ParseResult result = reader.Parse<flags>(stream, handler);
+    if (result.IsError()) {
+        SourceText source{name, text};
+        std::string what = handler.error.empty() ? rapidjson::GetParseError_En(result.Code()) : handler.error;
+        throw JsonError(source.where(result.Offset()) + ": " + what);
+    }
+}
+
+}  // namespace
+
+namespace {
+
 // Accepts exactly: { (key: { "Num": integer })* }
 class NumHandler : public rapidjson::BaseReaderHandler<rapidjson::UTF8<>, NumHandler> {
 public:
@@ -74,17 +95,8 @@ private:
 }  // namespace
 
 std::vector<int64_t> readNumFile(const std::string& name, const std::string& text, int64_t minValue, int64_t maxValue) {
-    constexpr unsigned flags = rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag |
-                               rapidjson::kParseNumbersAsStringsFlag | rapidjson::kParseStopWhenDoneFlag;
     NumHandler handler(minValue, maxValue);
-    rapidjson::StringStream stream(text.c_str());
-    rapidjson::Reader reader;
-    rapidjson::ParseResult result = reader.Parse<flags>(stream, handler);
-    if (result.IsError()) {
-        SourceText source{name, text};
-        std::string what = handler.error.empty() ? rapidjson::GetParseError_En(result.Code()) : handler.error;
-        throw JsonError(source.where(result.Offset()) + ": " + what);
-    }
+    parseStreaming(name, text, handler);
     return std::move(handler.values);
 }
 
@@ -170,17 +182,8 @@ private:
 
 void readFlatRecords(const std::string& name, const std::string& text,
                      const std::function<std::string(const FlatRecord&)>& onRecord) {
-    constexpr unsigned flags = rapidjson::kParseCommentsFlag | rapidjson::kParseTrailingCommasFlag |
-                               rapidjson::kParseNumbersAsStringsFlag | rapidjson::kParseStopWhenDoneFlag;
     FlatRecordHandler handler(onRecord);
-    rapidjson::StringStream stream(text.c_str());
-    rapidjson::Reader reader;
-    rapidjson::ParseResult result = reader.Parse<flags>(stream, handler);
-    if (result.IsError()) {
-        SourceText source{name, text};
-        std::string what = handler.error.empty() ? rapidjson::GetParseError_En(result.Code()) : handler.error;
-        throw JsonError(source.where(result.Offset()) + ": " + what);
-    }
+    parseStreaming(name, text, handler);
 }
 
 }  // namespace q3::json

@@ -50,6 +50,8 @@ public:
     // and keep it when its leaf has a cluster (q3map2 PointInLeafNum). Without nodes: leaf 0, or -1
     // when there are no leafs either.
     int leafForPoint(Vec3 point) const;
+    // Whether the BSP has a node tree (without one, point-in-solid tests cannot be made).
+    bool hasNodes() const { return !bsp_.nodes.empty(); }
     int clusterForPoint(Vec3 point) const;  // -1 outside the world
     int areaForPoint(Vec3 point) const;     // -1 outside the world
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "bsp_tree.h"
 #include "progress.h"
 
 namespace q3::light {
@@ -40,6 +41,20 @@ void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, boo
     for (size_t i = 0; i < lights.size(); ++i)
         if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, forceFast))
             out.push_back(static_cast<uint32_t>(i));
+}
+
+namespace {
+constexpr float kGridEpsilon = 0.0f;       // GRID_EPSILON: first point-in-solid test
+constexpr float kNudgedEpsilon = -0.125f;  // VERTEX_EPSILON: test of nudged points
+}  // namespace
+
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges) {
+    if (!tree || !tree->hasNodes()) return PlacedGridPoint{origin, -1, false};
+    const int cluster = tree->clusterForPointExt(origin, kGridEpsilon);
+    if (cluster >= 0) return PlacedGridPoint{origin, cluster, false};
+    const std::optional<Vec3> free = tree->nudgeOutOfSolid(origin, nudges, kNudgedEpsilon);
+    if (!free) return std::nullopt;
+    return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }
 
 void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin, bool forceFast,

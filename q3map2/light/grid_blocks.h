@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,6 +44,18 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 // the grid and their envelope reaches the box.
 void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, bool forceFast,
                         std::vector<uint32_t>& out);
+
+class BspTree;
+
+// Where a grid point is lit: its lattice position, or the first free nudge of it (`nudges`, nearest
+// first) when it starts in solid. `tree` null (or a BSP without nodes): every point is free, cluster
+// -1. nullopt: every nudge stays in solid.
+struct PlacedGridPoint {
+    Vec3 origin;
+    int cluster = -1;
+    bool nudged = false;
+};
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges);
 
 // A grid to light: `bounds` points per axis at `mins` + index * `size`.
 struct GridLattice {

@@ -17,8 +17,6 @@
 namespace q3::light {
 namespace {
 
-constexpr float kGridEpsilon = 0.0f;       // first point-in-solid test (as the legacy grid)
-constexpr float kNudgedEpsilon = -0.125f;  // test of nudged points (as the legacy grid)
 constexpr int kMaxAreaSubdivisions = 8;    // pieces per triangle edge for emitters close to a point
 constexpr float kPiecesPerRadius = 4.0f;   // pieces per edge ~ this * emitter radius / distance
 // Emitters adding less than this (legacy units, 255 = white) are one directional sample: spreading
@@ -213,7 +211,7 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     grid.points.assign(numPoints, sh::GridPointSH{});
 
     const LightingEnv env = gridLightingEnv(ctx);
-    const bool useTree = ctx.tree && !ctx.bsp.nodes.empty();
+    const bool useTree = ctx.tree && ctx.tree->hasNodes();
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
     // Offsets half the radius apart (33 positions): a point deep in solid costs one tree walk per
     // position, and solid points are filled from their neighbours afterwards anyway.
@@ -225,21 +223,15 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     std::vector<Vec3> origins(numPoints);
     log.info(strCat("SH light grid: ", numPoints, " points"));
     Progress progress = Progress::forConsole(log, numPoints);
-    auto lightPoint = [&](size_t i, Vec3 origin, std::span<const uint32_t> candidates) {
-        int cluster = -1;
-        if (useTree) {
-            cluster = ctx.tree->clusterForPointExt(origin, kGridEpsilon);
-            if (cluster < 0) {
-                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, offsets, kNudgedEpsilon);
-                if (!free) {
-                    solid[i] = 1;
-                    return;
-                }
-                nudged[i] = 1;
-                origin = *free;
-                cluster = ctx.tree->clusterForPoint(origin);
-            }
+    auto lightPoint = [&](size_t i, Vec3 lattice, std::span<const uint32_t> candidates) {
+        const std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, offsets);
+        if (!placed) {
+            solid[i] = 1;
+            return;
         }
+        nudged[i] = placed->nudged ? 1 : 0;
+        const Vec3 origin = placed->origin;
+        const int cluster = placed->cluster;
         origins[i] = origin;
         sh::SH9Color acc;
         Vec3 total = ctx.world.ambient;

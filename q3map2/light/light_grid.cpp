@@ -13,8 +13,6 @@
 namespace q3::light {
 namespace {
 
-constexpr float kGridEpsilon = 0.0f;       // GRID_EPSILON: first point-in-solid test
-constexpr float kNudgedEpsilon = -0.125f;  // VERTEX_EPSILON: test of nudged points
 constexpr int kBlockEdge = 4;              // grid points per block edge (lights culled per block)
 
 GridOptions gridOptionsFromContext(const LightContext& ctx) {
@@ -42,7 +40,6 @@ void lightGrid(LightContext& ctx, Log& log) {
     const LightingEnv env = gridLightingEnv(ctx);
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
     const float nudgeStep = std::max(1.0f, nudgeRadius / 4.0f);
-    const bool useTree = ctx.tree && !ctx.bsp.nodes.empty();
     const std::vector<Vec3> nudges = nudgeOffsets(nudgeRadius, nudgeStep);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
@@ -51,21 +48,15 @@ void lightGrid(LightContext& ctx, Log& log) {
     Progress progress = Progress::forConsole(log, points.size());
     // One grid point: nudged out of solid (or left all-zero, which the engine skips), then lit by
     // the lights that reach its block, in light order.
-    auto lightPoint = [&](size_t i, Vec3 origin, std::span<const uint32_t> candidates) {
-        int cluster = -1;
-        if (useTree) {
-            cluster = ctx.tree->clusterForPointExt(origin, kGridEpsilon);
-            if (cluster < 0) {
-                std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(origin, nudges, kNudgedEpsilon);
-                if (!free) {
-                    points[i] = bsp::GridPoint{};
-                    inSolid[i] = 1;
-                    return;
-                }
-                origin = *free;
-                cluster = ctx.tree->clusterForPoint(origin);
-            }
+    auto lightPoint = [&](size_t i, Vec3 lattice, std::span<const uint32_t> candidates) {
+        const std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, nudges);
+        if (!placed) {
+            points[i] = bsp::GridPoint{};
+            inSolid[i] = 1;
+            return;
         }
+        const Vec3 origin = placed->origin;
+        const int cluster = placed->cluster;
         thread_local std::vector<LightContribution> contributions;
         contributions.clear();
         Vec3 total = ctx.world.ambient;

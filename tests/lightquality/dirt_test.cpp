@@ -6,22 +6,15 @@
 #include <cmath>
 
 #include "dirt.h"
+#include "../light/light_test_util.h"
 #include "quality_scene.h"
 
 namespace q3::light {
 namespace {
 
-SceneSurface sceneQuad(Vec3 corner, Vec3 edgeU, Vec3 edgeV, const LightingShader* shader = nullptr) {
-    SceneSurface s;
-    s.shader = shader;
-    s.xyz = {corner, corner + edgeU, corner + edgeU + edgeV, corner + edgeV};
-    s.triangles = {0, 1, 2, 0, 2, 3};
-    return s;
-}
-
 // Floor 512 x 512 at z = 0 and a wall in the plane x = 0 (y 0..512, z 0..256).
 std::vector<SceneSurface> cornerScene(const LightingShader* wallShader = nullptr) {
-    return {sceneQuad({0, 0, 0}, {512, 0, 0}, {0, 512, 0}), sceneQuad({0, 0, 0}, {0, 512, 0}, {0, 0, 256}, wallShader)};
+    return {test::quad({0, 0, 0}, {512, 0, 0}, {0, 512, 0}), test::quad({0, 0, 0}, {0, 512, 0}, {0, 0, 256}, wallShader)};
 }
 
 // Sum of 1 - t/depth over q3map2's 48 cone rays (16 azimuths x 3 elevations in 88 degrees) and the
@@ -83,7 +76,7 @@ TEST(HitScene, NearestHitDistanceSkyAndStreamsAgree) {
     LightingShader sky;
     sky.sky = true;
     std::vector<SceneSurface> surfaces = cornerScene();
-    surfaces.push_back(sceneQuad({512, 0, 0}, {0, 512, 0}, {0, 0, 256}, &sky));
+    surfaces.push_back(test::quad({512, 0, 0}, {0, 512, 0}, {0, 0, 256}, &sky));
     HitScene scene(surfaces, {});
     const RayHit wall = scene.nearest({100, 256, 10}, {-1, 0, 0}, 0, 1000);
     EXPECT_TRUE(wall.hit);

@@ -8,24 +8,17 @@
 #include "color_pipeline.h"
 #include "floodlight.h"
 #include "log.h"
+#include "../light/light_test_util.h"
 #include "quality_scene.h"
 #include "shader_info.h"
 
 namespace q3::light {
 namespace {
 
-SceneSurface sceneQuad(Vec3 corner, Vec3 edgeU, Vec3 edgeV, const LightingShader* shader = nullptr) {
-    SceneSurface s;
-    s.shader = shader;
-    s.xyz = {corner, corner + edgeU, corner + edgeU + edgeV, corner + edgeV};
-    s.triangles = {0, 1, 2, 0, 2, 3};
-    return s;
-}
-
 // A floor and a wide ceiling 64 units above the sample (z = 65 for a sample at z = 1).
 std::vector<SceneSurface> ceilingScene(const LightingShader* ceilingShader = nullptr) {
-    return {sceneQuad({-2048, -2048, 0}, {4096, 0, 0}, {0, 4096, 0}),
-            sceneQuad({-2048, -2048, 65}, {0, 4096, 0}, {4096, 0, 0}, ceilingShader)};
+    return {test::quad({-2048, -2048, 0}, {4096, 0, 0}, {0, 4096, 0}),
+            test::quad({-2048, -2048, 65}, {0, 4096, 0}, {4096, 0, 0}, ceilingShader)};
 }
 
 // Mean over q3map2's 64 floodlight rays (16 azimuths x 4 elevations in 88 degrees), or every
@@ -43,7 +36,7 @@ float expectedUnderCeiling(float height, float distance, int stride = 1) {
 }
 
 TEST(Floodlight, OpenSampleSeesEverything) {
-    HitScene scene({sceneQuad({-512, -512, 0}, {1024, 0, 0}, {0, 1024, 0})}, {});
+    HitScene scene({test::quad({-512, -512, 0}, {1024, 0, 0}, {0, 1024, 0})}, {});
     EXPECT_EQ(floodlightForSample({0, 0, 1}, {0, 0, 1}, scene, FloodlightSettings{}), 1.0f);
 }
 

@@ -57,7 +57,7 @@ inline void finish(bsp::Bsp& b, std::vector<std::pair<std::string, std::string>>
 // Writes the BSP as <tmp>/game/maps/<name>.bsp and `shaderScript` as <tmp>/game/scripts/test.shader.
 inline std::filesystem::path writeScene(const bsp::Bsp& b, const std::string& name,
                                         const std::string& shaderScript = "") {
-    const std::filesystem::path game = test::tempDir() / "game";
+    const std::filesystem::path game = q3::test::tempDir() / "game";
     std::filesystem::create_directories(game / "maps");
     if (!shaderScript.empty()) {
         std::filesystem::create_directories(game / "scripts");

@@ -135,17 +135,26 @@ sh::SH9Color bruteForceArea(const Light& light, Vec3 corner, Vec3 edgeU, Vec3 ed
     return acc;
 }
 
-TEST(ShTrace, AreaLightSampledOverItsSurface) {
-    // A 96 x 96 emitter in the plane z = 0 facing up, seen from close by and off to the side.
-    const Vec3 corner{-48, -48, 0}, edgeU{96, 0, 0}, edgeV{0, 96, 0};
+// A 96 x 96 emitter (corner {-48, -48, 0}, edges kEmitterU / kEmitterV) in the plane z = 0 facing
+// up, its origin nudged off the plane as surface lights are.
+const Vec3 kEmitterCorner{-48, -48, 0}, kEmitterU{96, 0, 0}, kEmitterV{0, 96, 0};
+Light squareEmitter() {
+    const Vec3 corner = kEmitterCorner, edgeU = kEmitterU, edgeV = kEmitterV;
     Light area;
     area.type = LightType::Area;
     area.normal = {0, 0, 1};
     area.winding = {corner, corner + edgeV, corner + edgeU + edgeV, corner + edgeU};
-    area.origin = Vec3{0, 0, 0} + area.normal;  // nudged off the plane, as surface lights are
+    area.origin = Vec3{0, 0, 0} + area.normal;
     area.planeDist = dot(area.origin, area.normal);
     area.add = 3000;
     area.photons = 1;
+    return area;
+}
+
+TEST(ShTrace, AreaLightSampledOverItsSurface) {
+    // The square emitter seen from close by and off to the side.
+    const Vec3 corner = kEmitterCorner, edgeU = kEmitterU, edgeV = kEmitterV;
+    Light area = squareEmitter();
     area.color = {1, 0.9f, 0.8f};
     const LightingEnv env;
     const std::vector<Vec3d> normals = randomNormals(300, 11);
@@ -172,15 +181,7 @@ TEST(ShTrace, AreaLightSampledOverItsSurface) {
 // The pieces of a close emitter are shadowed together by the legacy grid's one ray: the SH grid sees
 // the light exactly when the legacy grid does, and a blocker cannot hide only some pieces.
 TEST(ShTrace, AreaLightPiecesShareTheLegacyShadowRay) {
-    const Vec3 corner{-48, -48, 0}, edgeU{96, 0, 0}, edgeV{0, 96, 0};
-    Light area;
-    area.type = LightType::Area;
-    area.normal = {0, 0, 1};
-    area.winding = {corner, corner + edgeV, corner + edgeU + edgeV, corner + edgeU};
-    area.origin = Vec3{0, 0, 0} + area.normal;
-    area.planeDist = dot(area.origin, area.normal);
-    area.add = 3000;
-    area.photons = 1;
+    const Light area = squareEmitter();
     const Vec3 point{0, 0, 40};
     sh::SH9Color open;
     ASSERT_TRUE(addLightToGridPointSH(open, area, point, -1, LightingEnv{}));
