@@ -8,6 +8,7 @@
 #include "light_context.h"
 #include "light_stage.h"
 
+#include "deluxe.h"
 #include "grid_encode.h"
 #include "grid_sh.h"
 #include "light_text.h"
@@ -88,8 +89,11 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
 }
 
 void writeLitBsp(LightContext& ctx, Log& log) {
-    injectCommandLine(ctx.entities[0], ctx.commandLine);
-    ctx.bsp.entities = bsp::unparseEntities(ctx.entities);
+    // The stage may write more than once (-bounce stores between passes): record the command line once.
+    std::vector<bsp::Entity> entities = ctx.entities;
+    injectCommandLine(entities[0], ctx.commandLine);
+    if (std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx)) markDeluxeWorldspawn(entities[0], *deluxe);
+    ctx.bsp.entities = bsp::unparseEntities(entities);
     writeFileAtomic(ctx.bspPath, bsp::serializeBsp(ctx.bsp));
     log.info(strCat("wrote ", ctx.bspPath.string()));
 }
@@ -107,6 +111,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     loadLightInputs(ctx, common, log);
     phase("scene");
     buildSurfaceGeometry(ctx);
+    smoothNormals(ctx, log);
     buildScene(ctx);
     log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
     phase("lights");
@@ -115,10 +120,14 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
         phase("lightmaps");
         lightLightmaps(ctx, log);
     }
+    // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each bounce);
+    // the grids receive them only with -bouncegrid.
+    const size_t directLights = ctx.lights.size();
+    ctx.lights.insert(ctx.lights.end(), ctx.bounceLights.begin(), ctx.bounceLights.end());
     phase("vertex light");
     lightVertexes(ctx, log);
-    // Bounce, dirt and deluxe maps plug in here; the SH grid (SetupGridSH / TraceGridSH) runs
-    // beside the legacy grid from the same light list.
+    if (!options.bounceGrid) ctx.lights.resize(directLights);
+    // The SH grid (SetupGridSH / TraceGridSH) runs beside the legacy grid from the same light list.
     if (!options.noGrid) {
         phase("light grid");
         lightGrid(ctx, log);

@@ -32,7 +32,6 @@ struct LightStats {
     uint64_t gridPoints = 0;      // grid points lit
     uint64_t gridPointsInSolid = 0;  // grid points left dark (no free point nearby)
     uint64_t lightmaps = 0;       // raw lightmaps
-    uint64_t droppedStyledLight = 0;  // contributions of styles other than 0 (not stored in IBSP)
     uint64_t shGatherRays = 0;    // -shgather rays traced
     double shGatherSeconds = 0;   // -shgather time (scene build, rays, projection)
 };
@@ -58,11 +57,13 @@ struct LightContext {
     std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
     std::vector<int> receiveShadows;     // per BSP surface: shadow group it receives from (0 = none)
+    std::vector<Vec3> shadedNormals;     // per draw vertex; empty = the BSP's normals (phong.h)
     std::vector<int> skyIndices;         // per BSP shader
     std::unique_ptr<BspTree> tree;
     SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
     std::unique_ptr<TraceScene> scene;
     std::vector<Light> lights;
+    std::vector<Light> bounceLights;     // -bounce: the emitters of every radiosity pass
 
     // Settings derived from the options.
     LightScales scales;
@@ -86,11 +87,17 @@ ColorOptions colorOptionsFromOptions(const LightOptions& options, float maxLight
 void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log);
 // World-space geometry of every surface: bmodel origins applied, patches tessellated.
 void buildSurfaceGeometry(LightContext& ctx);
+// -shade / -shadeangle: the phong-smoothed normal of every draw vertex into shadedNormals (left
+// empty when phong shading is off or changes nothing); logs how many vertices were smoothed.
+void smoothNormals(LightContext& ctx, Log& log);
 // Sky indices, the Embree scene and the BSP tree (clusters, PVS, solidity).
 void buildScene(LightContext& ctx);
 // The light list: entity lights of the BSP and the .map, shader suns, skies and surface lights.
 void createLights(LightContext& ctx, Log& log);
-// Lightmaps of every lightmapped surface, packed into the BSP (or external pages).
+// PVS cluster of every non-sun light; lights stuck in solid are removed (their count is returned).
+int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights);
+// Lightmaps of every lightmapped surface (direct light, then -bounce passes whose emitters are
+// kept in ctx.bounceLights), packed into the BSP (or external pages).
 void lightLightmaps(LightContext& ctx, Log& log);
 // Vertex colours of every draw vertex.
 void lightVertexes(LightContext& ctx, Log& log);

@@ -81,11 +81,13 @@ cli::OptionTable<O> buildLightTable() {
            });
     flag({"-border"}, &O::debugBorder, "Add a red border to lightmaps for debugging", kNotImplemented);
     real({"-bouncecolorratio"}, &O::bounceColorRatio, Range::between(0, 1),
-         "How much the texture colour tints bounced light (0..1)", kNotImplemented);
-    flag({"-bouncegrid"}, &O::bounceGrid, "Also add radiosity to the light grid and the SH grid", kNotImplemented);
-    flag({"-bounceonly"}, &O::bounceOnly, "Store only the bounced light", kNotImplemented);
-    real({"-bouncescale"}, &O::bounceScale, Range::atLeast(0), "Scale of radiosity", kNotImplemented);
-    integer({"-bounce"}, &O::bounce, Range::between(0, 1000), "Number of radiosity bounces", kNotImplemented);
+         "How much the texture colour tints bounced light (0..1)", kImplemented);
+    flag({"-bouncegrid"}, &O::bounceGrid, "Also add radiosity to the light grid and the SH grid", kImplemented);
+    flag({"-bounceonly"}, &O::bounceOnly, "Store only the bounced light", kImplemented);
+    action({"-bouncescale"}, {{ArgKind::Float, "F", Range::atLeast(0)}}, 1, "0.25",
+           "Multiply the scale of radiosity (default 0.25) by F", kImplemented,
+           [](O& o, Values v) { o.bounceScale *= static_cast<float>(v[0].number); });
+    integer({"-bounce"}, &O::bounce, Range::between(0, 1000), "Number of radiosity bounces", kImplemented);
     real({"-brightness"}, &O::brightness, Range::atLeast(0), "Scale of the resulting lightmap brightness",
          kImplemented);
     flag({"-cheapgrid"}, &O::cheapGrid, "Use -cheap style lighting for the light grid", kImplemented);
@@ -98,7 +100,7 @@ cli::OptionTable<O> buildLightTable() {
     flag({"-dark"}, &O::dark, "Darken lightmap seams", kNotImplemented);
     flag({"-debugaxis"}, &O::debugAxis, "Colour lightmaps by their projection axis", kNotImplemented);
     flag({"-debugcluster"}, &O::debugCluster, "Colour lightmaps by the cluster of each luxel", kNotImplemented);
-    flag({"-debugdeluxe"}, &O::debugDeluxe, "Show deluxemaps in place of lightmaps", kNotImplemented);
+    flag({"-debugdeluxe"}, &O::debugDeluxe, "Show deluxemaps in place of lightmaps", kImplemented);
     flag({"-debugnormals"}, &O::debugNormals, "Colour lightmaps by the surface normal", kNotImplemented);
     flag({"-debugorigin"}, &O::debugOrigin, "Colour lightmaps by luxel origin", kNotImplemented);
     flag({"-debugsamplesize"}, &O::debugSampleSize, "Print every 'surface too large for sample size' warning",
@@ -106,8 +108,8 @@ cli::OptionTable<O> buildLightTable() {
     flag({"-debugsurfaces", "-debugsurface"}, &O::debugSurfaces, "Colour lightmaps by surface index", kNotImplemented);
     flag({"-debug"}, &O::debug, "Mark lightmaps by the cluster state of each luxel", kNotImplemented);
     integer({"-deluxemode"}, &O::deluxeMode, Range::between(0, 1), "Deluxemap space: 0 model space, 1 tangent space",
-            kNotImplemented);
-    flag({"-deluxe", "-deluxemap"}, &O::deluxe, "Write light direction maps (deluxemaps)", kNotImplemented);
+            kImplemented);
+    flag({"-deluxe", "-deluxemap"}, &O::deluxe, "Write light direction maps (deluxemaps)", kImplemented);
     flag({"-dirtdebug", "-debugdirt"}, &O::dirtDebug, "Store the dirt maps as lightmaps", kImplemented);
     real({"-dirtdepth"}, &O::dirtDepth, Range::positive(), "Dirt mapping ray length", kImplemented);
     real({"-dirtgain"}, &O::dirtGain, Range::positive(), "Dirt mapping exponent", kImplemented);
@@ -115,7 +117,7 @@ cli::OptionTable<O> buildLightTable() {
             kImplemented);
     real({"-dirtscale"}, &O::dirtScale, Range::atLeast(0), "Dirt mapping scale", kImplemented);
     flag({"-dirty"}, &O::dirty, "Enable dirt mapping (ambient occlusion)", kImplemented);
-    flag({"-dump"}, &O::dump, "Write radiosity lights as numbered .map prefabs", kNotImplemented);
+    flag({"-dump"}, &O::dump, "Write radiosity lights as numbered .map prefabs", kImplemented);
     flag({"-export"}, &O::exportLightmaps, "Also export the lightmaps as images when done", kImplemented);
     real({"-exposure"}, &O::exposure, Range::atLeast(0), "Lightmap exposure for overbright spots (0 = off)",
          kImplemented);
@@ -126,7 +128,7 @@ cli::OptionTable<O> buildLightTable() {
     real({"-extradist"}, &O::extraDist, Range::atLeast(0), "Extra distance added to point and area lights",
          kImplemented);
     flag({"-extravisnudge"}, &O::extraVisNudge, "Nudge luxel origins towards a better vis cluster", kNotImplemented);
-    flag({"-fastbounce"}, &O::fastBounce, "Use -fast style lighting for radiosity", kNotImplemented);
+    flag({"-fastbounce"}, &O::fastBounce, "Use -fast style lighting for radiosity", kImplemented);
     action({"-faster"}, {}, 0, "off", "Faster falloff for area lights; implies -fast", kImplemented,
            [](O& o, Values) { o.faster = o.fast = true; });
     flag({"-fastgrid"}, &O::fastGrid, "Use -fast style lighting for the light grid", kImplemented);
@@ -178,9 +180,9 @@ cli::OptionTable<O> buildLightTable() {
     integer({"-minsamplesize"}, &O::minSampleSize, Range::atLeast(1), "Minimum lightmap resolution in units per luxel",
             kNotImplemented);
     flag({"-nobouncestore"}, &O::noBounceStore, "Write the BSP and lightmaps only after the last bounce",
-         kNotImplemented);
+         kImplemented);
     flag({"-nocollapse"}, &O::noCollapse, "Do not merge identical lightmaps", kImplemented);
-    flag({"-nodeluxe", "-nodeluxemap"}, &O::deluxe, "Disable deluxemaps", kNotImplemented, false);
+    flag({"-nodeluxe", "-nodeluxemap"}, &O::deluxe, "Disable deluxemaps", kImplemented, false);
     flag({"-nofastpoint"}, &O::fastPoint, "Disable the fast falloff envelope of point lights", kNotImplemented, false);
     flag({"-nogrid"}, &O::noGrid, "Do not compute the light grid", kImplemented);
     flag({"-nolightmapsearch"}, &O::noLightmapSearch, "Place lightmaps in page order without searching",
@@ -195,7 +197,7 @@ cli::OptionTable<O> buildLightTable() {
            [](O& o, Values) { setColourSpaces(o, true, false, false, false); });
     action({"-nosRGBtex"}, {}, 0, "off", "Treat textures as linear", kNotImplemented,
            [](O& o, Values) { setColourSpaces(o, false, true, false, false); });
-    flag({"-nostyle", "-nostyles"}, &O::noStyles, "Disable light styles", kNotImplemented);
+    flag({"-nostyle", "-nostyles"}, &O::noStyles, "Disable light styles", kImplemented);
     flag({"-nosurf"}, &O::noSurf, "Trace only against the BSP tree, not surfaces", kNotImplemented);
     flag({"-notrace"}, &O::noTrace, "Disable shadows", kImplemented);
     action({"-novertex"}, {{ArgKind::Float, "F", Range::between(0, 1)}}, 0, "off",
@@ -232,11 +234,17 @@ cli::OptionTable<O> buildLightTable() {
                o.skyScale *= s;
            });
     action({"-shadeangle"}, {{ArgKind::Float, "A", Range::between(0, 360)}}, 1, "off",
-           "Phong shading with the given breaking angle in degrees", kNotImplemented, [](O& o, Values v) {
-               o.shade = true;
+           "Phong shading: smooth vertex normals meeting at less than A degrees on every surface "
+           "(shader q3map_shadeAngle and entity _shadeangle win); 0 sets no default",
+           kImplemented, [](O& o, Values v) {
+               // As q3map2: a positive angle also switches phong shading on.
                o.shadeAngle = static_cast<float>(v[0].number);
+               if (o.shadeAngle > 0) o.shade = true;
            });
-    flag({"-shade"}, &O::shade, "Phong shading at the default angle", kNotImplemented);
+    flag({"-shade"}, &O::shade,
+         "Phong shading on surfaces whose shader (q3map_shadeAngle) or entity (_shadeangle) sets an angle; "
+         "with -shadeangle A, on every surface",
+         kImplemented);
     action({"-shbspx"}, {}, 0, "off",
            "Store the SH grid as the BSPX lump LIGHTGRID_SH of a version 46 file instead of lump 18; implies -sh",
            kImplemented, [](O& o, Values) { o.sh = o.shBspx = true; });
@@ -261,7 +269,7 @@ cli::OptionTable<O> buildLightTable() {
            [](O& o, Values) { setColourSpaces(o, true, false, false, true); });
     action({"-sRGBtex"}, {}, 0, "off", "Treat textures as sRGB", kNotImplemented,
            [](O& o, Values) { setColourSpaces(o, false, true, false, true); });
-    flag({"-style", "-styles"}, &O::noStyles, "Enable light styles", kNotImplemented, false);
+    flag({"-style", "-styles"}, &O::noStyles, "Enable light styles", kImplemented, false);
     flag({"-sunonly"}, &O::sunOnly, "Compute only sun light", kImplemented);
     integer({"-super", "-supersample"}, &O::superSample, Range::between(1, 8), "Ordered N x N supersampling",
             kImplemented);

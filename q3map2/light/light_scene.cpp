@@ -210,12 +210,22 @@ void createLights(LightContext& ctx, Log& log) {
         });
     ctx.lights.insert(ctx.lights.end(), shaderLights.begin(), shaderLights.end());
 
+    const int inSolid = assignLightClusters(ctx, ctx.lights);
+    if (inSolid > 0) log.info(strCat(inSolid, " lights in solid removed"));
+
+    size_t counts[4] = {0, 0, 0, 0};
+    for (const Light& l : ctx.lights) ++counts[static_cast<int>(l.type)];
+    log.info(strCat(counts[0], " point lights, ", counts[1], " spotlights, ", counts[2], " suns, ", counts[3],
+                    " area lights"));
+}
+
+int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights) {
     // Clusters for PVS culling. Lights inside solid are removed, as q3map2 does, after trying
     // small fixed nudges.
     std::vector<Light> kept;
-    kept.reserve(ctx.lights.size());
+    kept.reserve(lights.size());
     int inSolid = 0;
-    for (Light& light : ctx.lights) {
+    for (Light& light : lights) {
         if (light.type == LightType::Sun || !ctx.tree || ctx.bsp.nodes.empty()) {
             kept.push_back(std::move(light));
             continue;
@@ -232,13 +242,8 @@ void createLights(LightContext& ctx, Log& log) {
         light.cluster = cluster;
         kept.push_back(std::move(light));
     }
-    ctx.lights = std::move(kept);
-    if (inSolid > 0) log.info(strCat(inSolid, " lights in solid removed"));
-
-    size_t counts[4] = {0, 0, 0, 0};
-    for (const Light& l : ctx.lights) ++counts[static_cast<int>(l.type)];
-    log.info(strCat(counts[0], " point lights, ", counts[1], " spotlights, ", counts[2], " suns, ", counts[3],
-                    " area lights"));
+    lights = std::move(kept);
+    return inSolid;
 }
 
 LightingEnv surfaceLightingEnv(const LightContext& ctx) {

@@ -104,6 +104,7 @@ LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image)
     s.backsplashDistance = info.backsplashDistance;
     s.backsplashSet = info.backsplashSet;
     s.lightFilterRadius = info.lightFilterRadius;
+    s.bounceScale = info.bounceScale;
     s.lightImage = image;
     s.lightmapSampleSize = info.lightmapSampleSize;
     s.lightmapAxis = info.lightmapAxis;

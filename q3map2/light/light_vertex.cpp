@@ -77,7 +77,9 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 Vec3 color = ctx.vertexFromLightmap[vi]
                                  ? ctx.vertexLight[vi]
                                  : traceVertex(ctx, surfaceEnv, Vec3::fromArray(dv.xyz) + offset,
-                                               normalize(Vec3::fromArray(dv.normal)), shader.twoSided,
+                                               normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
+                                                                                        : Vec3::fromArray(dv.normal)),
+                                               shader.twoSided,
                                                shader.forceSunlight);
                 color = vmax(color, ctx.world.minVertexLight);
                 const Rgb8 bytes = colorToBytes(color, o.vertexScale * shader.vertexScale, ctx.color);

@@ -19,16 +19,17 @@ bool isLightmappedSurface(const bsp::Surface& surface, bool shaderVertexLit) {
     return lightmappableType && surface.lightmapNum != bsp::kLightmapByVertex && !shaderVertexLit;
 }
 
-SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex) {
+SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex, std::span<const Vec3> normals) {
     SurfaceGeometry g;
     const bsp::Surface& s = bsp.surfaces.at(size_t(surfaceIndex));
     g.surfaceIndex = surfaceIndex;
     g.surfaceType = s.surfaceType;
     g.positions.reserve(size_t(std::max(0, s.numVerts)));
     for (int i = 0; i < s.numVerts; ++i) {
-        const bsp::DrawVert& v = bsp.drawVerts.at(size_t(s.firstVert) + i);
+        const size_t index = size_t(s.firstVert) + i;
+        const bsp::DrawVert& v = bsp.drawVerts.at(index);
         g.positions.push_back(Vec3::fromArray(v.xyz));
-        g.normals.push_back(Vec3::fromArray(v.normal));
+        g.normals.push_back(index < normals.size() ? normals[index] : Vec3::fromArray(v.normal));
     }
     for (int i = 0; i + 2 < s.numIndexes; i += 3)
         for (int k = 0; k < 3; ++k) {

@@ -64,7 +64,9 @@ struct SurfaceGeometry {
 };
 
 // Copies one surface's vertices, triangles and plane out of the BSP (the mesh stays empty).
-SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex);
+// `normals`, when not empty, holds the normal of every draw vertex of the BSP to use instead of the
+// stored ones (phong shading: LightContext::shadedNormals).
+SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex, std::span<const Vec3> normals = {});
 
 // One super-sampled luxel.
 struct Luxel {

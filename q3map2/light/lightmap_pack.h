@@ -27,6 +27,7 @@ struct PackOptions {
 struct LightmapBlock {
     int width = 0, height = 0;
     std::vector<Rgb8> texels;    // width * height, row-major
+    std::vector<Rgb8> directionTexels;  // -deluxe: the light direction of every texel; empty = none
     std::vector<uint8_t> used;   // per texel: 0 = carries nothing (may overlap other blocks); empty = all used
     std::string sortKey;         // shader name of the first surface (q3map2 places blocks sorted by it)
     std::vector<int> surfaces;   // BSP surfaces drawn with this lightmap

@@ -157,6 +157,7 @@ struct LightingShader {
     float backsplashDistance = 23;
     bool backsplashSet = false;  // q3map_backsplash written: its values win over -backsplash
     float lightFilterRadius = 0;
+    float bounceScale = 1;      // q3map_bounceScale: fraction re-emitted by -bounce (0 = none)
 
     const LightImage* lightImage = nullptr;  // owned by the caller, outlives the scene
     SkyBoxImages skyBox{};                    // skyParms box images, for q3map_skyLight colours

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "lights.h"
+#include "winding_ops.h"
 
 namespace q3::light {
 namespace {
@@ -14,38 +15,6 @@ constexpr float kDefaultLightSubdivide = 999;
 constexpr float kClipEpsilon = 0.1f;
 
 using Winding = std::vector<Vec3>;
-
-// Splits `w` by the axial plane (axis, dist) into the part above and the part below.
-void clipAxial(const Winding& w, int axis, float dist, Winding& front, Winding& back) {
-    const size_t n = w.size();
-    for (size_t i = 0; i < n; ++i) {
-        const Vec3& a = w[i];
-        const Vec3& b = w[(i + 1) % n];
-        float da = a[axis] - dist;
-        float db = b[axis] - dist;
-        if (da >= -kClipEpsilon) front.push_back(a);
-        if (da <= kClipEpsilon) back.push_back(a);
-        bool crosses = (da > kClipEpsilon && db < -kClipEpsilon) || (da < -kClipEpsilon && db > kClipEpsilon);
-        if (crosses) {
-            Vec3 mid = lerp(a, b, da / (da - db));
-            mid[axis] = dist;
-            front.push_back(mid);
-            back.push_back(mid);
-        }
-    }
-}
-
-float windingArea(const Winding& w) {
-    float area = 0;
-    for (size_t i = 2; i < w.size(); ++i) area += 0.5f * length(cross(w[i - 1] - w[0], w[i] - w[0]));
-    return area;
-}
-
-Bounds windingBounds(const Winding& w) {
-    Bounds b;
-    for (const Vec3& p : w) b.add(p);
-    return b;
-}
 
 struct AreaLightContext {
     const LightingShader& shader;
@@ -61,7 +30,7 @@ void emitAreaLight(const AreaLightContext& ctx, const Winding& w) {
         if (bounds.maxs[axis] - bounds.mins[axis] > ctx.subdivide) {
             const float dist = (bounds.maxs[axis] + bounds.mins[axis]) * 0.5f;
             Winding front, back;
-            clipAxial(w, axis, dist, front, back);
+            clipWindingAxial(w, axis, dist, kClipEpsilon, front, back);
             if (front.size() >= 3) emitAreaLight(ctx, front);
             if (back.size() >= 3) emitAreaLight(ctx, back);
             return;

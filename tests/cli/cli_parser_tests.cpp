@@ -66,8 +66,8 @@ TEST(CliParser, UnknownOptionsSuggestTheClosestName) {
 
 TEST(CliParser, NotImplementedOptionsFail) {
     EXPECT_EQ(lightError({"-lomem"}), "-lomem is a q3map2 option this build does not implement yet");
-    EXPECT_EQ(lightError({"-fast", "-bouncegrid"}), "-bouncegrid is a q3map2 option this build does not implement yet");
-    EXPECT_EQ(lightError({"-deluxemap"}), "-deluxemap is a q3map2 option this build does not implement yet");
+    EXPECT_EQ(lightError({"-fast", "-randomsamples"}), "-randomsamples is a q3map2 option this build does not implement yet");
+    EXPECT_EQ(lightError({"-wolf"}), "-wolf is a q3map2 option this build does not implement yet");
     // Refused before its value is looked at.
     EXPECT_EQ(lightError({"-thresh", "abc"}), "-thresh is a q3map2 option this build does not implement yet");
 }

@@ -1,0 +1,132 @@
+// Emitters of the -bounce passes (bounce_passes.h).
+#include "bounce_passes.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "bounce_lights.h"
+#include "file_io.h"
+#include "light_context.h"
+#include "light_text.h"
+#include "patch.h"
+#include "surface_lighting.h"
+
+namespace q3::light {
+namespace {
+
+// Vertices and triangles of a lit surface in world space, with texture and lightmap coordinates.
+void emitterGeometry(const LightContext& ctx, const SurfaceLight& lit, BounceSurface& out) {
+    const bsp::Surface& s = ctx.bsp.surfaces[size_t(lit.surfaceNum)];
+    const Vec3 offset = ctx.surfaceOffsets[size_t(lit.surfaceNum)];
+    const auto& coords = lit.layout.vertexCoords;
+    auto lightmapCoord = [&](int v) { return size_t(v) < coords.size() ? coords[size_t(v)] : std::array<float, 2>{}; };
+    if (s.surfaceType == bsp::MST_PATCH) {
+        // The lighting tessellation carries texture and lightmap coordinates through the curve.
+        patch::ControlGrid grid;
+        grid.width = s.patchWidth;
+        grid.height = s.patchHeight;
+        for (int v = 0; v < s.numVerts; ++v) {
+            const bsp::DrawVert& dv = ctx.bsp.drawVerts[size_t(s.firstVert + v)];
+            patch::PatchVertex pv;
+            pv.xyz = Vec3::fromArray(dv.xyz);
+            pv.normal = Vec3::fromArray(dv.normal);
+            pv.st[0] = dv.st[0];
+            pv.st[1] = dv.st[1];
+            pv.lightmap[0] = lightmapCoord(v)[0];
+            pv.lightmap[1] = lightmapCoord(v)[1];
+            grid.points.push_back(pv);
+        }
+        if (!patch::isValidGrid(grid)) return;
+        const patch::PatchMesh mesh = patch::tessellateForLighting(grid);
+        for (const patch::PatchVertex& v : mesh.verts)
+            out.verts.push_back({v.xyz + offset, v.normal, {v.st[0], v.st[1]}, {v.lightmap[0], v.lightmap[1]}});
+        out.triangles = mesh.indices;
+        return;
+    }
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = ctx.bsp.drawVerts[size_t(s.firstVert + v)];
+        out.verts.push_back({Vec3::fromArray(dv.xyz) + offset, Vec3::fromArray(dv.normal), {dv.st[0], dv.st[1]},
+                             lightmapCoord(v)});
+    }
+    for (int i = 0; i + 2 < s.numIndexes; i += 3) {
+        const int32_t a = ctx.bsp.drawIndexes[size_t(s.firstIndex + i)];
+        const int32_t b = ctx.bsp.drawIndexes[size_t(s.firstIndex + i + 1)];
+        const int32_t c = ctx.bsp.drawIndexes[size_t(s.firstIndex + i + 2)];
+        if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= s.numVerts) continue;
+        out.triangles.insert(out.triangles.end(), {uint32_t(a), uint32_t(b), uint32_t(c)});
+    }
+}
+
+// The form factor of an emitter counts for receivers in front of it when its winding runs clockwise
+// seen from the front (the order of BSP triangles); emitters cut from surfaces whose triangles run
+// the other way are turned round, so that they light the side their normal faces.
+void orientWinding(Light& light) {
+    Vec3 area;
+    for (size_t i = 0; i < light.winding.size(); ++i)
+        area += cross(light.winding[i], light.winding[(i + 1) % light.winding.size()]);
+    if (dot(area, light.normal) > 0) std::reverse(light.winding.begin(), light.winding.end());
+}
+
+}  // namespace
+
+BouncePasses::BouncePasses(const LightContext& ctx, Log& log) : ctx_(ctx), log_(log) {
+    albedo_ = loadShaderAlbedo(ctx, images_, log);
+}
+
+std::vector<Light> BouncePasses::emitters(const std::vector<SurfaceLight>& previous, int bounce, Vec3 ambient) {
+    std::vector<BounceSurface> surfaces;
+    for (const SurfaceLight& lit : previous) {
+        if (!lit.ok) continue;
+        const bsp::Surface& s = ctx_.bsp.surfaces[size_t(lit.surfaceNum)];
+        const size_t shaderNum = size_t(s.shaderNum);
+        BounceSurface geometry;
+        geometry.surfaceNum = lit.surfaceNum;
+        geometry.shader = &ctx_.shaders.shaders[shaderNum];
+        geometry.shaderBounceScale = ctx_.shaders.shaders[shaderNum].bounceScale;
+        if (shaderNum < albedo_.size()) {
+            geometry.image = albedo_[shaderNum].image;
+            geometry.averageColor = albedo_[shaderNum].average;
+        }
+        geometry.width = lit.width;
+        geometry.height = lit.height;
+        geometry.lit = lit.used;
+        emitterGeometry(ctx_, lit, geometry);
+        for (const LightmapLayer& layer : lit.layers) {
+            BounceSurface styled = geometry;
+            styled.style = layer.style;
+            styled.luxels = layer.color;
+            if (layer.style == 0)
+                for (Vec3& c : styled.luxels) c = vmax(c - ambient, Vec3{});
+            surfaces.push_back(std::move(styled));
+        }
+    }
+    BounceSettings settings;
+    settings.bounceScale = ctx_.options.bounceScale;
+    settings.colorRatio = ctx_.options.bounceColorRatio;
+    settings.falloffTolerance = ctx_.scales.falloffTolerance;
+    settings.fast = ctx_.options.fastBounce || ctx_.options.fast || ctx_.options.faster;
+    settings.noStyles = ctx_.options.noStyles;
+    std::vector<Light> lights = createBounceLights(surfaces, settings);
+    for (Light& light : lights) {
+        orientWinding(light);
+        // The -fast cut compares what a sample receives with the tolerance; an emitter's colour is
+        // its reflected light (well below 1), so the cut is taken on add * colour, not on add alone.
+        const float strength = maxComponent(light.color);
+        if (strength > 0 && strength < 1) light.falloffTolerance /= strength;
+    }
+    const int inSolid = assignLightClusters(ctx_, lights);
+    log_.info(strCat("bounce ", bounce, ": ", lights.size(), " diffuse lights from ", surfaces.size(),
+                     " surfaces", inSolid > 0 ? strCat(" (", inSolid, " in solid removed)") : std::string()));
+    if (ctx_.options.dump) {
+        char suffix[32];
+        std::snprintf(suffix, sizeof(suffix), "_bounce_%03d.map", bounce - 1);
+        std::filesystem::path path = ctx_.bspPath;
+        path.replace_extension();
+        path += suffix;
+        writeFileAtomic(path, bounceLightsAsMap(lights));
+        log_.info(strCat("Writing ", path.string()));
+    }
+    return lights;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,476 @@
+// One lighting pass over one raw lightmap (surface_lighting.h).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "surface_lighting.h"
+
+#include "light_context.h"
+#include "light_text.h"
+#include "lightmap_filter.h"
+#include "lightmap_layout.h"
+#include "luxel_passes.h"
+#include "patch.h"
+
+namespace q3::light {
+namespace {
+
+constexpr float kLuxelEpsilon = 0.125f;  // LUXEL_EPSILON of q3map2's point-in-solid test
+
+
+// Patch mesh for the layout, with each point's position in control-point index space carried
+// through the tessellation in the texture-coordinate channel (Bezier blending of evenly spaced
+// indices is linear, so the result is the exact control-space coordinate).
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> shadedNormals) {
+    patch::ControlGrid grid;
+    grid.width = s.patchWidth;
+    grid.height = s.patchHeight;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        patch::PatchVertex pv;
+        pv.xyz = Vec3::fromArray(dv.xyz);
+        const size_t vi = static_cast<size_t>(s.firstVert + v);
+        pv.normal = vi < shadedNormals.size() ? shadedNormals[vi] : Vec3::fromArray(dv.normal);
+        pv.st[0] = static_cast<float>(v % std::max(1, s.patchWidth));
+        pv.st[1] = static_cast<float>(v / std::max(1, s.patchWidth));
+        grid.points.push_back(pv);
+    }
+    CurvedMesh mesh;
+    if (!patch::isValidGrid(grid)) return mesh;
+    patch::PatchMesh tess = patch::tessellateForLighting(grid);
+    mesh.width = tess.width;
+    mesh.height = tess.height;
+    for (const patch::PatchVertex& v : tess.verts) {
+        mesh.positions.push_back(v.xyz);
+        mesh.normals.push_back(v.normal);
+        mesh.controlU.push_back(v.st[0]);
+        mesh.controlV.push_back(v.st[1]);
+    }
+    return mesh;
+}
+
+// q3map2 MapSingleLuxel: a luxel in solid is moved by half a luxel along the lightmap's s and t
+// steps (never along the normal, so that a luxel under a detail brush lying on the surface stays
+// in solid and is filled from its neighbours instead of being lit from the far side of that brush).
+std::vector<Vec3> luxelNudges(Vec3 sStep, Vec3 tStep, int superSample) {
+    const Vec3 s = sStep * (0.5f / static_cast<float>(std::max(1, superSample)));
+    const Vec3 t = tStep * (0.5f / static_cast<float>(std::max(1, superSample)));
+    return {s, -s, t, -t, s + t, s - t, -s + t, -s - t};
+}
+std::vector<Vec3> luxelNudges(const std::array<Vec3, 2>& tangents, int superSample) {
+    return luxelNudges(tangents[0], tangents[1], superSample);
+}
+
+// Curved surfaces have no lightmap steps: q3map2 uses unit vectors perpendicular to the normal.
+std::array<Vec3, 2> curvedTangents(Vec3 normal) {
+    const Vec3 helper = std::fabs(normal.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 s = normalize(cross(normal, helper));
+    return {s, cross(normal, s)};
+}
+
+// Luxels grouped in square tiles of the super-sampled lightmap: a light whose envelope misses a
+// tile's bounds skips its luxels (large surfaces meet many lights that reach only a corner).
+struct LuxelTiles {
+    std::vector<Bounds> bounds;
+    std::vector<std::vector<uint32_t>> luxels;  // indices of the luxels with a sample point
+
+    LuxelTiles(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int edge) {
+        for (int ty = 0; ty < h; ty += edge)
+            for (int tx = 0; tx < w; tx += edge) {
+                Bounds b;
+                std::vector<uint32_t> members;
+                for (int y = ty; y < std::min(h, ty + edge); ++y)
+                    for (int x = tx; x < std::min(w, tx + edge); ++x) {
+                        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+                        if (!points[i]) continue;
+                        b.add(points[i]->origin);
+                        members.push_back(static_cast<uint32_t>(i));
+                    }
+                if (members.empty()) continue;
+                bounds.push_back(b);
+                luxels.push_back(std::move(members));
+            }
+    }
+
+    // The tiles the light's envelope reaches.
+    void reachedBy(const Light& light, bool forceFast, std::vector<uint32_t>& out) const {
+        out.clear();
+        for (size_t t = 0; t < bounds.size(); ++t)
+            if (lightReachesBounds(light, bounds[t], forceFast)) out.push_back(static_cast<uint32_t>(t));
+    }
+    template <typename Visit>
+    void forEachLuxel(std::span<const uint32_t> tiles, Visit&& visit) const {
+        for (uint32_t t : tiles)
+            for (uint32_t i : luxels[t]) visit(i);
+    }
+};
+
+constexpr int kTileEdge = 8;  // super luxels per tile edge
+
+struct LuxelSampler {
+    const LightContext& ctx;
+    const LightingEnv& env;
+    const RawLightmap& raw;
+    Vec3 offset;
+    bool twoSided;
+    // Planar lightmaps: the in-plane nudges of every luxel (see luxelNudges).
+    std::vector<Vec3> planarNudges = raw.planar ? luxelNudges(raw.vecs[0], raw.vecs[1], raw.superSample)
+                                                : std::vector<Vec3>{};
+
+    std::optional<SamplePoint> samplePoint(Vec3 origin, Vec3 normal) const {
+        SamplePoint p{origin + offset, normal, -1, twoSided};
+        if (ctx.tree && !ctx.bsp.nodes.empty()) {
+            int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
+            if (cluster < 0) {
+                const std::vector<Vec3> nudges =
+                    raw.planar ? std::vector<Vec3>{} : luxelNudges(curvedTangents(normal), raw.superSample);
+                std::optional<Vec3> free =
+                    ctx.tree->nudgeOutOfSolid(p.origin, raw.planar ? planarNudges : nudges, kLuxelEpsilon);
+                if (!free) return std::nullopt;
+                p.origin = *free;
+                cluster = ctx.tree->clusterForPoint(p.origin);
+            }
+            p.cluster = cluster;
+        }
+        return p;
+    }
+
+    // Reused between lights so that lighting a surface allocates once, not once per light.
+    struct Scratch {
+        std::vector<ShadowRay> rays;
+        std::vector<size_t> rayLuxel;  // luxel of each ray
+        std::vector<Vec3> transmission;
+    };
+
+    // lightAt for the sample points of the tiles `active` (`skip[i]` = leave dark), written to
+    // out[i] (and the direction towards the light to dirs[i] when `dirs` is set); the shadow rays
+    // of the light are traced together as one batch. Entries outside those tiles are not touched.
+    void lightAll(const Light& light, const std::vector<std::optional<SamplePoint>>& points, const LuxelTiles& tiles,
+                  std::span<const uint32_t> active, const std::vector<uint8_t>& skip, std::vector<Vec3>& out,
+                  std::vector<Vec3>* dirs, Scratch& scratch) const {
+        std::vector<ShadowRay>& rays = scratch.rays;
+        std::vector<size_t>& rayLuxel = scratch.rayLuxel;
+        rays.clear();
+        rayLuxel.clear();
+        LightingEnv deferred = env;
+        deferred.deferredRays = env.scene ? &rays : nullptr;
+        tiles.forEachLuxel(active, [&](uint32_t i) {
+            out[i] = Vec3{};
+            if (!points[i] || skip[i]) return;
+            const size_t before = rays.size();
+            std::optional<LightContribution> c = lightToSample(light, *points[i], deferred);
+            const bool traced = rays.size() > before;
+            if (!c) {
+                rays.resize(before);
+                return;
+            }
+            out[i] = c->color;
+            if (dirs) (*dirs)[i] = c->direction;
+            if (traced) rayLuxel.push_back(i);
+        });
+        if (rays.empty()) return;
+        scratch.transmission.resize(rays.size());
+        env.scene->traceBatch(rays, scratch.transmission);
+        for (size_t k = 0; k < rays.size(); ++k) out[rayLuxel[k]] *= scratch.transmission[k];
+    }
+
+    Vec3 lightAt(const Light& light, const SamplePoint& p) const {
+        std::optional<LightContribution> c = lightToSample(light, p, env);
+        return c ? c->color : Vec3{};
+    }
+
+    // Mean of four sub-samples around (fx, fy), recursing where they disagree.
+    Vec3 subsample(const Light& light, float fx, float fy, int level, int maxLevel, Vec3 centre) const {
+        const auto offsets = subsampleOffsets(level);
+        Vec3 values[4];
+        bool lit[4];
+        for (int k = 0; k < 4; ++k) {
+            const float sx = fx + offsets[static_cast<size_t>(k)][0];
+            const float sy = fy + offsets[static_cast<size_t>(k)][1];
+            values[k] = centre;
+            if (std::optional<Luxel> lx = sampleRawLightmap(raw, sx, sy))
+                if (std::optional<SamplePoint> p = samplePoint(lx->origin, lx->normal))
+                    values[k] = lightAt(light, *p);
+            lit[k] = maxComponent(values[k]) > 0;
+        }
+        const bool mixed = !(lit[0] == lit[1] && lit[1] == lit[2] && lit[2] == lit[3]);
+        Vec3 sum;
+        for (int k = 0; k < 4; ++k) {
+            if (mixed && level + 1 < maxLevel)
+                values[k] = subsample(light, fx + offsets[static_cast<size_t>(k)][0],
+                                      fy + offsets[static_cast<size_t>(k)][1], level + 1, maxLevel, values[k]);
+            sum += values[k];
+        }
+        return sum * 0.25f;
+    }
+};
+
+// Whether a light can reach any luxel of a raw lightmap: inside its envelope, in front of a planar
+// one-sided surface, and in the PVS of at least one luxel's cluster.
+struct LightmapReach {
+    Bounds bounds;
+    std::vector<int> clusters;  // sorted, unique; empty = unknown
+    bool planar = false;
+    bool twoSided = false;
+    bool flatNormals = false;  // every luxel normal is exactly the plane normal (no phong shading)
+    Vec3 planeNormal;
+    float planeDist = 0;
+};
+
+bool inFrontOfPlane(const Light& light, const LightmapReach& r) {
+    if (!r.planar || r.twoSided) return true;
+    if (light.type == LightType::Sun) {
+        // A sun below the plane lights no luxel whose normal is the plane's (Lambert term <= 0).
+        const bool lambert = light.angleAttenuation || light.controlled;
+        return !(r.flatNormals && lambert && dot(r.planeNormal, light.normal) <= 0);
+    }
+    if (light.type == LightType::Area) {
+        for (const Vec3& p : light.winding)
+            if (dot(p, r.planeNormal) - r.planeDist > -1.0f) return true;
+        return dot(light.origin, r.planeNormal) - r.planeDist > -1.0f;
+    }
+    return dot(light.origin, r.planeNormal) - r.planeDist >= -1.0f;
+}
+
+bool visibleFromLightmap(const Light& light, const LightmapReach& r, const BspTree* tree) {
+    if (!tree || light.type == LightType::Sun || light.cluster < 0 || r.clusters.empty()) return true;
+    for (int c : r.clusters)
+        if (c < 0 || tree->clusterVisible(c, light.cluster)) return true;
+    return false;
+}
+
+
+// The light of one lighting pass on the super luxels of a raw lightmap, by style.
+struct StyledSuperLight {
+    std::vector<int> styles;          // styles[k] is the style of images[k]; [0] is style 0
+    std::vector<LuxelImage> images;
+    std::vector<Vec3> directions;     // -deluxe, style 0 only
+
+    // Index of the image of `style`, creating it while there is room; -1 when four styles are in use.
+    int slotFor(int style, const LuxelImage& like) {
+        for (size_t k = 0; k < styles.size(); ++k)
+            if (styles[k] == style) return int(k);
+        if (int(styles.size()) >= kMaxLightmapStyles) return -1;
+        styles.push_back(style);
+        LuxelImage image(like.width, like.height);
+        image.state = like.state;
+        images.push_back(std::move(image));
+        return int(styles.size()) - 1;
+    }
+};
+
+// Luminance weights of a contribution's direction (only the ratios between lights matter).
+float brightness(Vec3 c) { return 0.299f * c.x + 0.587f * c.y + 0.114f * c.z; }
+
+LightmapReach lightmapReach(const std::vector<std::optional<SamplePoint>>& points, const Bounds& bounds,
+                            const RawLightmap& raw, bool planarSurface, bool twoSided, Vec3 offset) {
+    LightmapReach reach;
+    reach.bounds = bounds;
+    reach.twoSided = twoSided;
+    reach.planar = raw.planar && planarSurface;
+    if (reach.planar) {
+        reach.flatNormals = true;
+        for (size_t i = 0; i < points.size(); ++i)
+            if (points[i] && !(points[i]->normal == raw.planeNormal)) reach.flatNormals = false;
+        reach.planeNormal = raw.planeNormal;
+        reach.planeDist = raw.planeDist + dot(offset, raw.planeNormal);
+    }
+    for (const auto& p : points)
+        if (p) reach.clusters.push_back(p->cluster);
+    std::sort(reach.clusters.begin(), reach.clusters.end());
+    reach.clusters.erase(std::unique(reach.clusters.begin(), reach.clusters.end()), reach.clusters.end());
+    return reach;
+}
+
+// Mean of the super-sample block of every BSP luxel (no state rules: directions and normals).
+std::vector<Vec3> downsampleMean(const std::vector<Vec3>& super, int superWidth, int superSample, int width,
+                                 int height) {
+    std::vector<Vec3> out(size_t(width) * size_t(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            Vec3 sum;
+            for (int sy = 0; sy < superSample; ++sy)
+                for (int sx = 0; sx < superSample; ++sx)
+                    sum += super[size_t(y * superSample + sy) * size_t(superWidth) + size_t(x * superSample + sx)];
+            out[size_t(y) * size_t(width) + size_t(x)] = sum;
+        }
+    return out;
+}
+
+// Adaptive sub-sampling where the light's lit/unlit state changes between neighbouring luxels.
+void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vector<std::optional<SamplePoint>>& points,
+                 int w, int h, int maxLevel, std::vector<Vec3>& color) {
+    std::vector<Vec3> refined = color;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            if (!points[i]) continue;
+            const bool lit = maxComponent(color[i]) > 0;
+            bool edge = false;
+            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                const size_t j = size_t(ny) * size_t(w) + size_t(nx);
+                if (points[j] && (maxComponent(color[j]) > 0) != lit) edge = true;
+            }
+            if (edge) refined[i] = sampler.subsample(light, x + 0.5f, y + 0.5f, 0, maxLevel, color[i]);
+        }
+    color = std::move(refined);
+}
+
+}  // namespace
+
+const LightmapLayer* SurfaceLight::layer(int style) const {
+    for (const LightmapLayer& l : layers)
+        if (l.style == style) return &l;
+    return nullptr;
+}
+
+LightmapLayer& SurfaceLight::layerFor(int style) {
+    for (LightmapLayer& l : layers)
+        if (l.style == style) return l;
+    layers.push_back({style, std::vector<Vec3>(size_t(width) * size_t(height))});
+    return layers.back();
+}
+
+LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log) {
+    const LightOptions& o = ctx.options;
+    LayoutOptions layoutOptions;
+    layoutOptions.superSample = std::clamp(o.superSample, 1, kMaxSuperSample);
+    if (layoutOptions.superSample != o.superSample)
+        log.warning(strCat("-super ", o.superSample, " clamped to ", layoutOptions.superSample));
+    layoutOptions.sampleScale = o.sampleScale;
+    layoutOptions.pageSize = o.lightmapWidth;
+    layoutOptions.rawSizeLimit = o.rawLightmapSizeLimit;
+    return layoutOptions;
+}
+
+SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv, int surfaceNum,
+                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass) {
+    SurfaceLight result;
+    result.surfaceNum = surfaceNum;
+    // The receive shadow group picks the casters (group 0: lit without occlusion).
+    const LightingEnv env = receiverLightingEnv(ctx, sharedEnv, surfaceNum);
+    const bsp::Surface& surface = ctx.bsp.surfaces[static_cast<size_t>(surfaceNum)];
+    const LightingShader& shader = ctx.shaders.shaders[static_cast<size_t>(surface.shaderNum)];
+    const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);
+    const LightOptions& o = ctx.options;
+
+    SurfaceGeometry geometry = surfaceGeometry(ctx.bsp, surfaceNum, ctx.shadedNormals);
+    if (surface.surfaceType == bsp::MST_PATCH) geometry.mesh = curvedMesh(ctx.bsp, surface, ctx.shadedNormals);
+    SurfaceLightmapParams params;
+    params.sampleSize =
+        resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize, o.sampleSize, o.sampleScale);
+    params.axis = extra.lightmapAxis;
+    if (shader.lightmapAxis >= 0 && shader.lightmapAxis < 3) {
+        params.axis = Vec3{};
+        params.axis[shader.lightmapAxis] = 1;
+    }
+    params.sampleOffset = shader.lightmapSampleOffset;
+    Log quiet(false);
+    std::optional<RawLightmap> layout = layoutSurfaceLightmap(geometry, params, layoutOptions, &quiet);
+    if (!layout) return result;
+    RawLightmap& raw = *layout;
+
+    const int w = raw.superWidth(), h = raw.superHeight();
+    const Vec3 offset = ctx.surfaceOffsets[static_cast<size_t>(surfaceNum)];
+    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided};
+
+    // Sample points of every super luxel.
+    const Vec3 ambient = pass.direct ? ctx.world.ambient : Vec3{};
+    LuxelImage total(w, h);
+    std::vector<std::optional<SamplePoint>> points(static_cast<size_t>(w) * static_cast<size_t>(h));
+    std::vector<Vec3> superNormals(points.size());
+    Bounds bounds;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const Luxel& lx = raw.luxel(x, y);
+            const size_t i = total.index(x, y);
+            if (!lx.mapped) continue;
+            superNormals[i] = lx.normal;
+            points[i] = sampler.samplePoint(lx.origin, lx.normal);
+            if (points[i]) {
+                total.state[i] = LuxelState::Mapped;
+                total.color[i] = ambient;
+                bounds.add(points[i]->origin);
+                ++result.luxelCount;
+            } else {
+                total.state[i] = LuxelState::Occluded;
+            }
+        }
+
+    const LightmapReach reach =
+        lightmapReach(points, bounds, raw, surface.surfaceType == bsp::MST_PLANAR, shader.twoSided, offset);
+    StyledSuperLight light{{0}, {std::move(total)}, {}};
+    if (pass.deluxe) light.directions.assign(points.size(), Vec3{});
+    const int maxLevel = std::max(0, o.lightSamples - 1);
+    LuxelImage single(w, h);
+    single.state = light.images[0].state;
+    std::vector<Vec3> singleDirs(pass.deluxe ? points.size() : 0);
+    std::vector<uint8_t> skip(points.size(), 0);  // -cheap: luxels already saturated
+    const LuxelTiles tiles(points, w, h, kTileEdge);
+    std::vector<uint32_t> active;  // tiles the light reaches
+    LuxelSampler::Scratch scratch;
+    for (const Light& lt : pass.lights) {
+        if (bounds.empty() || !lightReachesBounds(lt, bounds, env.settings.forceFast)) continue;
+        if (!inFrontOfPlane(lt, reach) || !visibleFromLightmap(lt, reach, env.tree)) continue;
+        tiles.reachedBy(lt, env.settings.forceFast, active);
+        if (active.empty()) continue;
+        const int slot = light.slotFor(lt.style, light.images[0]);
+        if (slot < 0) {
+            ++result.styleLimitHits;
+            continue;
+        }
+        LuxelImage& target = light.images[size_t(slot)];
+        if (o.cheap)
+            for (size_t i = 0; i < points.size(); ++i)
+                skip[i] = target.color[i].x >= 255 && target.color[i].y >= 255 && target.color[i].z >= 255;
+        const bool withDirs = pass.deluxe && slot == 0;
+        sampler.lightAll(lt, points, tiles, active, skip, single.color, withDirs ? &singleDirs : nullptr, scratch);
+        const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, lt.filterRadius), raw.sampleSize,
+                                             raw.superSample, o.filter);
+        if (maxLevel == 0 && radius == 0) {
+            // Plain sampling: only the active luxels changed.
+            tiles.forEachLuxel(active, [&](uint32_t i) {
+                target.color[i] += single.color[i];
+                if (withDirs) light.directions[i] += singleDirs[i] * brightness(single.color[i]);
+                single.color[i] = Vec3{};
+            });
+            continue;
+        }
+        bool any = false;
+        tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
+        if (!any && maxLevel == 0) continue;
+        if (maxLevel > 0) refineEdges(sampler, lt, points, w, h, maxLevel, single.color);
+        const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius) : single;
+        for (size_t i = 0; i < points.size(); ++i)
+            if (points[i]) {
+                target.color[i] += add.color[i];
+                if (withDirs) light.directions[i] += singleDirs[i] * brightness(add.color[i]);
+            }
+        std::fill(single.color.begin(), single.color.end(), Vec3{});
+    }
+
+    for (size_t k = 0; k < light.images.size(); ++k) {
+        LuxelImage& image = light.images[k];
+        if (passes && pass.direct && k == 0)
+            applyLuxelPasses(*passes, surface.shaderNum, image, points);  // floodlight, then dirt
+        fillFromNeighbours(image, k == 0 ? ambient : Vec3{}, false, false);
+        BspLuxels luxels = downsampleSuperLuxels(image, raw.superSample);
+        if (k == 0) {
+            result.width = luxels.width;
+            result.height = luxels.height;
+            result.used = std::move(luxels.used);
+        }
+        result.layers.push_back({light.styles[k], std::move(luxels.color)});
+    }
+    if (pass.deluxe) {
+        result.directions = downsampleMean(light.directions, w, raw.superSample, result.width, result.height);
+        result.normals = downsampleMean(superNormals, w, raw.superSample, result.width, result.height);
+    }
+    result.ok = true;
+    result.layout = std::move(raw);
+    return result;
+}
+
+}  // namespace q3::light

@@ -1,0 +1,60 @@
+// One lighting pass over one lightmapped surface: lay it out, light its super luxels with a list
+// of lights (sub-samples at light/shadow edges, per-light box filter), split by light style, and
+// average them into BSP luxels. The direct pass adds the world ambient, floodlight and dirt;
+// radiosity passes light the same luxels with the emitters made from the previous pass.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lightmap_layout.h"
+#include "lights.h"
+#include "vec3.h"
+
+namespace q3::light {
+
+struct LightContext;
+struct LightingEnv;
+struct LuxelPasses;
+
+constexpr int kMaxLightmapStyles = 4;  // MAX_LIGHTMAPS: style 0 and three others per raw lightmap
+
+// The light of one style on a raw lightmap, in BSP luxels (linear, legacy units 0..255+).
+struct LightmapLayer {
+    int style = 0;
+    std::vector<Vec3> color;
+};
+
+struct SurfacePass {
+    std::span<const Light> lights;
+    bool direct = true;   // the first pass: world ambient, floodlight and dirt
+    bool deluxe = false;  // also sum the direction the style-0 light comes from
+};
+
+struct SurfaceLight {
+    bool ok = false;
+    int surfaceNum = -1;
+    RawLightmap layout;
+    int width = 0, height = 0;          // BSP luxels
+    std::vector<uint8_t> used;          // per BSP luxel: 0 = nothing reached it
+    std::vector<LightmapLayer> layers;  // [0] is style 0; then styles in the order lights met them
+    // -deluxe: per BSP luxel, the sum of the style-0 light directions weighted by brightness.
+    std::vector<Vec3> directions;
+    std::vector<Vec3> normals;          // per BSP luxel: mean luxel normal (deluxe fallback and frame)
+    uint64_t luxelCount = 0;
+    uint64_t styleLimitHits = 0;        // lights dropped: the surface already had four styles
+
+    const LightmapLayer* layer(int style) const;
+    LightmapLayer& layerFor(int style);  // creates the layer (zero light) when missing
+};
+
+// The layout options of the stage (from -super, -samplescale, -lightmapsize, ...).
+LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log);
+
+// Lights one surface for one pass. `passes` (floodlight, dirt) apply to the direct pass only.
+SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& env, int surfaceNum,
+                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass);
+
+}  // namespace q3::light
