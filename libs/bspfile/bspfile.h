@@ -203,12 +203,15 @@ void validateBsp(const Bsp& bsp, const std::string& name);
 // 17-entry header, lump 18 without 19 entries), a BSPX name is empty or too long, or the file
 // would not fit 32-bit offsets.
 std::vector<uint8_t> serializeBsp(const Bsp& bsp, const std::string& name = "bsp");
-// serializeBsp + atomic replace of the target (temp file in the same folder, then rename).
+// The bytes of serializeBsp streamed to a temporary file in the same folder, then renamed over
+// the target: the file image is never built in memory (maps with a large SH grid stay small).
 void writeBsp(const std::filesystem::path& path, const Bsp& bsp);
 
 // Raw byte view of one lump as it would be written (used by -info and by tests comparing payloads).
 // Throws BspError for a lump number outside [0, kMaxLumps).
 std::vector<uint8_t> lumpBytes(const Bsp& bsp, int lump);
+// The same bytes without a copy (valid while `bsp` is unchanged).
+std::span<const uint8_t> lumpView(const Bsp& bsp, int lump);
 
 // Size in bytes of one record of a lump, or 0 for lumps kept as raw bytes (entities, lightmaps,
 // visibility, lump 17, lump 18).

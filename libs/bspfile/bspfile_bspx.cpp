@@ -74,10 +74,10 @@ std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t sta
     return lumps;
 }
 
-void appendBspxTrailer(std::vector<uint8_t>& out, const std::vector<BspxLump>& lumps, const std::string& name) {
-    padTo4(out);
-    const size_t directoryStart = out.size();
-    const size_t dataStart = directoryStart + kTrailerHeaderBytes + lumps.size() * kEntryBytes;
+void appendBspxTrailer(ByteSink& out, const std::vector<BspxLump>& lumps, const std::string& name) {
+    out.pad4();
+    const uint64_t directoryStart = out.size();
+    const uint64_t dataStart = directoryStart + kTrailerHeaderBytes + lumps.size() * kEntryBytes;
 
     // Lay the data out first so the directory can be written in one pass.
     std::vector<std::pair<uint64_t, uint64_t>> placement;
@@ -97,18 +97,19 @@ void appendBspxTrailer(std::vector<uint8_t>& out, const std::vector<BspxLump>& l
     }
     if (cursor > UINT32_MAX) fail(name, "bspx", "trailer would extend past 4 GiB");
 
-    out.insert(out.end(), {'B', 'S', 'P', 'X'});
-    appendU32(out, static_cast<uint32_t>(lumps.size()));
+    std::vector<uint8_t> directory = {'B', 'S', 'P', 'X'};
+    appendU32(directory, static_cast<uint32_t>(lumps.size()));
     for (size_t i = 0; i < lumps.size(); ++i) {
         char field[kNameBytes] = {};
         std::memcpy(field, lumps[i].name.data(), lumps[i].name.size());
-        out.insert(out.end(), field, field + kNameBytes);
-        appendU32(out, static_cast<uint32_t>(placement[i].first));
-        appendU32(out, static_cast<uint32_t>(placement[i].second));
+        directory.insert(directory.end(), field, field + kNameBytes);
+        appendU32(directory, static_cast<uint32_t>(placement[i].first));
+        appendU32(directory, static_cast<uint32_t>(placement[i].second));
     }
+    out.append(directory);
     for (const BspxLump& lump : lumps) {
-        out.insert(out.end(), lump.data.begin(), lump.data.end());
-        padTo4(out);
+        out.append(lump.data);
+        out.pad4();
     }
 }
 

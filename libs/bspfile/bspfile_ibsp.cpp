@@ -161,40 +161,82 @@ Bsp readBsp(const std::filesystem::path& path, const ReadOptions& options) {
     return parseBsp(bytes, path.string(), options);
 }
 
-std::vector<uint8_t> serializeBsp(const Bsp& bsp, const std::string& name) {
+namespace {
+
+class VectorSink : public detail::ByteSink {
+public:
+    void append(std::span<const uint8_t> bytes) override {
+        bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
+        size_ += bytes.size();
+    }
+    std::vector<uint8_t> take() { return std::move(bytes_); }
+
+private:
+    std::vector<uint8_t> bytes_;
+};
+
+class FileSink : public detail::ByteSink {
+public:
+    explicit FileSink(AtomicFileWriter& file) : file_(file) {}
+    void append(std::span<const uint8_t> bytes) override {
+        file_.write(bytes.data(), bytes.size());
+        size_ += bytes.size();
+    }
+
+private:
+    AtomicFileWriter& file_;
+};
+
+// Header (ident, version, lump directory), lumps in order each padded to 4 bytes, BSPX trailer.
+void serializeInto(const Bsp& bsp, const std::string& name, detail::ByteSink& out) {
     if (bsp.headerLumps < 17 || bsp.headerLumps > kMaxLumps)
         fail(name, "header", "cannot write " + std::to_string(bsp.headerLumps) + " lump entries (17, 18 or 19)");
     for (int lump = bsp.headerLumps; lump < kMaxLumps; ++lump) {
-        const size_t bytes = lumpBytes(bsp, lump).size();
+        const size_t bytes = lumpView(bsp, lump).size();
         if (bytes > 0)
             failLump(name, lump, std::to_string(bytes) + " bytes but the header has only " +
                                      std::to_string(bsp.headerLumps) + " entries");
     }
-
-    const size_t header = headerBytes(bsp.headerLumps);
-    std::vector<uint8_t> out(header, 0);
-    std::memcpy(out.data(), kIdent, 4);
-    std::memcpy(out.data() + 4, &bsp.version, 4);
+    // Offsets first, so that the header is written before the lumps and nothing is held twice.
+    std::vector<uint8_t> header(headerBytes(bsp.headerLumps), 0);
+    std::memcpy(header.data(), kIdent, 4);
+    std::memcpy(header.data() + 4, &bsp.version, 4);
+    size_t cursor = header.size();
     for (int lump = 0; lump < bsp.headerLumps; ++lump) {
-        const std::vector<uint8_t> payload = lumpBytes(bsp, lump);
+        const size_t bytes = lumpView(bsp, lump).size();
         int32_t entry[2] = {0, 0};  // an empty lump is written as offset 0, length 0
-        if (!payload.empty()) {
-            if (out.size() + payload.size() > static_cast<size_t>(INT32_MAX))
+        if (bytes > 0) {
+            if (cursor + bytes > static_cast<size_t>(INT32_MAX))
                 failLump(name, lump, "file would exceed 2 GiB, the limit of 32-bit lump offsets");
-            entry[0] = static_cast<int32_t>(out.size());
-            entry[1] = static_cast<int32_t>(payload.size());
-            out.insert(out.end(), payload.begin(), payload.end());
-            detail::padTo4(out);
+            entry[0] = static_cast<int32_t>(cursor);
+            entry[1] = static_cast<int32_t>(bytes);
+            cursor = detail::alignUp4(cursor + bytes);
         }
-        std::memcpy(out.data() + headerBytes(lump), entry, sizeof entry);
+        std::memcpy(header.data() + headerBytes(lump), entry, sizeof entry);
+    }
+    out.append(header);
+    for (int lump = 0; lump < bsp.headerLumps; ++lump) {
+        const std::span<const uint8_t> payload = lumpView(bsp, lump);
+        if (payload.empty()) continue;
+        out.append(payload);
+        out.pad4();
     }
     if (!bsp.bspx.empty()) detail::appendBspxTrailer(out, bsp.bspx, name);
-    return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> serializeBsp(const Bsp& bsp, const std::string& name) {
+    VectorSink sink;
+    serializeInto(bsp, name, sink);
+    return sink.take();
 }
 
 void writeBsp(const std::filesystem::path& path, const Bsp& bsp) {
-    const std::vector<uint8_t> bytes = serializeBsp(bsp, path.string());
-    writeFileAtomic(path, bytes);
+    AtomicFileWriter file(path);
+    FileSink sink(file);
+    serializeInto(bsp, path.string(), sink);
+    file.commit();
 }
 
 }  // namespace q3::bsp

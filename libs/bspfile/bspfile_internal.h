@@ -49,9 +49,30 @@ std::vector<uint8_t> bytesOf(const std::vector<T>& records) {
     return std::vector<uint8_t>(p, p + records.size() * sizeof(T));
 }
 
+template <typename T>
+std::span<const uint8_t> bytesView(const std::vector<T>& records) {
+    return {reinterpret_cast<const uint8_t*>(records.data()), records.size() * sizeof(T)};
+}
+
+// Where serialized bytes go: a vector, or a file written as they come (large maps are never held
+// twice in memory).
+class ByteSink {
+public:
+    virtual ~ByteSink() = default;
+    virtual void append(std::span<const uint8_t> bytes) = 0;
+    uint64_t size() const { return size_; }
+    void pad4() {
+        static constexpr uint8_t kZeros[4] = {0, 0, 0, 0};
+        append({kZeros, size_t(alignUp4(size_t(size_)) - size_)});
+    }
+
+protected:
+    uint64_t size_ = 0;
+};
+
 // BSPX trailer: parse the directory found at `start` (already known to hold "BSPX"), and append
-// one after the lumps of `out` (which must be 4-byte aligned in size).
+// one after the lumps of `out` (padded to 4 bytes first).
 std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name);
-void appendBspxTrailer(std::vector<uint8_t>& out, const std::vector<BspxLump>& lumps, const std::string& name);
+void appendBspxTrailer(ByteSink& out, const std::vector<BspxLump>& lumps, const std::string& name);
 
 }  // namespace q3::bsp::detail

@@ -45,25 +45,25 @@ void failLump(const std::string& file, int lump, const std::string& what) { fail
 
 }  // namespace detail
 
-std::vector<uint8_t> lumpBytes(const Bsp& bsp, int lump) {
-    using detail::bytesOf;
+std::span<const uint8_t> lumpView(const Bsp& bsp, int lump) {
+    using detail::bytesView;
     switch (lump) {
-        case LUMP_ENTITIES: return std::vector<uint8_t>(bsp.entities.begin(), bsp.entities.end());
-        case LUMP_SHADERS: return bytesOf(bsp.shaders);
-        case LUMP_PLANES: return bytesOf(bsp.planes);
-        case LUMP_NODES: return bytesOf(bsp.nodes);
-        case LUMP_LEAFS: return bytesOf(bsp.leafs);
-        case LUMP_LEAFSURFACES: return bytesOf(bsp.leafSurfaces);
-        case LUMP_LEAFBRUSHES: return bytesOf(bsp.leafBrushes);
-        case LUMP_MODELS: return bytesOf(bsp.models);
-        case LUMP_BRUSHES: return bytesOf(bsp.brushes);
-        case LUMP_BRUSHSIDES: return bytesOf(bsp.brushSides);
-        case LUMP_DRAWVERTS: return bytesOf(bsp.drawVerts);
-        case LUMP_DRAWINDEXES: return bytesOf(bsp.drawIndexes);
-        case LUMP_FOGS: return bytesOf(bsp.fogs);
-        case LUMP_SURFACES: return bytesOf(bsp.surfaces);
+        case LUMP_ENTITIES: return {reinterpret_cast<const uint8_t*>(bsp.entities.data()), bsp.entities.size()};
+        case LUMP_SHADERS: return bytesView(bsp.shaders);
+        case LUMP_PLANES: return bytesView(bsp.planes);
+        case LUMP_NODES: return bytesView(bsp.nodes);
+        case LUMP_LEAFS: return bytesView(bsp.leafs);
+        case LUMP_LEAFSURFACES: return bytesView(bsp.leafSurfaces);
+        case LUMP_LEAFBRUSHES: return bytesView(bsp.leafBrushes);
+        case LUMP_MODELS: return bytesView(bsp.models);
+        case LUMP_BRUSHES: return bytesView(bsp.brushes);
+        case LUMP_BRUSHSIDES: return bytesView(bsp.brushSides);
+        case LUMP_DRAWVERTS: return bytesView(bsp.drawVerts);
+        case LUMP_DRAWINDEXES: return bytesView(bsp.drawIndexes);
+        case LUMP_FOGS: return bytesView(bsp.fogs);
+        case LUMP_SURFACES: return bytesView(bsp.surfaces);
         case LUMP_LIGHTMAPS: return bsp.lightmaps;
-        case LUMP_LIGHTGRID: return bytesOf(bsp.lightGrid);
+        case LUMP_LIGHTGRID: return bytesView(bsp.lightGrid);
         case LUMP_VISIBILITY: return bsp.visibility;
         case LUMP_ADVERTISEMENTS: return bsp.lump17;
         case LUMP_LIGHTGRID_SH: return bsp.shGrid;
@@ -71,6 +71,11 @@ std::vector<uint8_t> lumpBytes(const Bsp& bsp, int lump) {
     }
     throw BspError("bsp: lump " + std::to_string(lump) + ": no such lump (valid: 0 to " +
                    std::to_string(kMaxLumps - 1) + ")");
+}
+
+std::vector<uint8_t> lumpBytes(const Bsp& bsp, int lump) {
+    const std::span<const uint8_t> view = lumpView(bsp, lump);
+    return std::vector<uint8_t>(view.begin(), view.end());
 }
 
 void attachShGrid(Bsp& bsp, std::vector<uint8_t> lumpImage) {

@@ -22,24 +22,15 @@ void emitterGeometry(const LightContext& ctx, const SurfaceLight& lit, BounceSur
     auto lightmapCoord = [&](int v) { return size_t(v) < coords.size() ? coords[size_t(v)] : std::array<float, 2>{}; };
     if (s.surfaceType == bsp::MST_PATCH) {
         // The lighting tessellation carries texture and lightmap coordinates through the curve.
-        patch::ControlGrid grid;
-        grid.width = s.patchWidth;
-        grid.height = s.patchHeight;
-        for (int v = 0; v < s.numVerts; ++v) {
-            const bsp::DrawVert& dv = ctx.bsp.drawVerts[size_t(s.firstVert + v)];
-            patch::PatchVertex pv;
-            pv.xyz = Vec3::fromArray(dv.xyz);
-            pv.normal = Vec3::fromArray(dv.normal);
-            pv.st[0] = dv.st[0];
-            pv.st[1] = dv.st[1];
-            pv.lightmap[0] = lightmapCoord(v)[0];
-            pv.lightmap[1] = lightmapCoord(v)[1];
-            grid.points.push_back(pv);
+        patch::ControlGrid grid = patchControlGrid(ctx.bsp, s, offset);
+        for (size_t v = 0; v < grid.points.size(); ++v) {
+            grid.points[v].lightmap[0] = lightmapCoord(int(v))[0];
+            grid.points[v].lightmap[1] = lightmapCoord(int(v))[1];
         }
         if (!patch::isValidGrid(grid)) return;
         const patch::PatchMesh mesh = patch::tessellateForLighting(grid);
         for (const patch::PatchVertex& v : mesh.verts)
-            out.verts.push_back({v.xyz + offset, v.normal, {v.st[0], v.st[1]}, {v.lightmap[0], v.lightmap[1]}});
+            out.verts.push_back({v.xyz, v.normal, {v.st[0], v.st[1]}, {v.lightmap[0], v.lightmap[1]}});
         out.triangles = mesh.indices;
         return;
     }

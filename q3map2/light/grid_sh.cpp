@@ -275,6 +275,7 @@ ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
     ShTraceStats stats;
     if (!ctx.options.sh && !ctx.options.shBspx) return stats;
     const ShGridLayout layout = setupGridSH(ctx, log);
+    bsp::detachShGrid(ctx.bsp);  // an SH grid of the input BSP is not kept beside the new one
     sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
     if (ctx.options.shGather) {  // indirect light on top of the direct light traced above
         std::vector<LightImage> images;

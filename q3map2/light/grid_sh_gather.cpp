@@ -285,6 +285,40 @@ void GatherScene::radianceAlong(Vec3 origin, std::span<const Vec3> directions, s
     }
 }
 
+void GatherScene::clearTo(Vec3 a, std::span<const Vec3> targets, std::span<uint8_t> clear) const {
+    constexpr size_t kPacket = 8;
+    alignas(32) int valid[kPacket];
+    alignas(32) RTCRay8 ray;
+    bool any = false;
+    for (size_t k = 0; k < kPacket; ++k) {
+        const Vec3 d = k < targets.size() ? targets[k] - a : Vec3{};
+        const float length = q3::length(d);
+        const bool used = length > 2 * kRayStart;
+        any = any || used;
+        valid[k] = used ? -1 : 0;
+        const Vec3 dir = used ? d / length : Vec3{0, 0, 1};
+        ray.org_x[k] = a.x;
+        ray.org_y[k] = a.y;
+        ray.org_z[k] = a.z;
+        ray.dir_x[k] = dir.x;
+        ray.dir_y[k] = dir.y;
+        ray.dir_z[k] = dir.z;
+        ray.tnear[k] = kRayStart;
+        ray.tfar[k] = used ? length - kRayStart : 0;
+        ray.mask[k] = 0xFFFFFFFFu;
+        ray.time[k] = 0;
+        ray.flags[k] = 0;
+        ray.id[k] = unsigned(k);
+    }
+    if (any) {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcOccluded8(valid, impl_->scene, &context, &ray);
+    }
+    for (size_t k = 0; k < targets.size() && k < kPacket; ++k)
+        clear[k] = !(valid[k] && ray.tfar[k] < 0);  // Embree sets tfar to -inf on a hit
+}
+
 sh::SH9Color gatherProbe(const GatherScene& scene, Vec3 origin, std::span<const Vec3> directions) {
     sh::SH9Color radiance;
     if (directions.empty()) return radiance;
@@ -300,6 +334,66 @@ sh::SH9Color gatherProbe(const GatherScene& scene, Vec3 origin, std::span<const 
     return sh::convolveRadianceToIrradiance(radiance);
 }
 
+namespace {
+
+// The probes of a lattice step: indices whose x, y and z are all multiples of `step`.
+bool onCoarseLattice(size_t i, const int32_t bounds[3], int step) {
+    const size_t bx = size_t(bounds[0]), by = size_t(bounds[1]);
+    const size_t x = i % bx, y = (i / bx) % by, z = i / (bx * by);
+    return x % size_t(step) == 0 && y % size_t(step) == 0 && z % size_t(step) == 0;
+}
+
+// Trilinear interpolation of the coarse probes around fine probe i, over the corners that were
+// gathered (not in solid) and that it sees (light must not leak through walls and floors), their
+// weights renormalised; false when no corner qualifies or the probe lies past the grid's last
+// coarse plane.
+bool interpolateCoarse(size_t i, const int32_t bounds[3], int step, const std::vector<sh::SH9Color>& indirect,
+                       const std::vector<uint8_t>& have, const GatherScene& scene, std::span<const Vec3> origins,
+                       sh::SH9Color& out) {
+    const int b[3] = {bounds[0], bounds[1], bounds[2]};
+    const int p[3] = {int(i % size_t(b[0])), int((i / size_t(b[0])) % size_t(b[1])), int(i / (size_t(b[0]) * size_t(b[1])))};
+    int lo[3], hi[3];
+    double t[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = p[a] / step * step;
+        t[a] = double(p[a] - lo[a]) / step;
+        hi[a] = t[a] > 0 ? lo[a] + step : lo[a];
+        if (hi[a] >= b[a]) return false;
+    }
+    size_t corners[8];
+    double weights[8];
+    Vec3 targets[8];
+    size_t n = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1;
+        int c[3];
+        for (int a = 0; a < 3; ++a) {
+            const bool upper = (corner >> a) & 1;
+            w *= upper ? t[a] : 1 - t[a];
+            c[a] = upper ? hi[a] : lo[a];
+        }
+        if (w == 0) continue;
+        const size_t j = size_t(c[0]) + size_t(c[1]) * size_t(b[0]) + size_t(c[2]) * size_t(b[0]) * size_t(b[1]);
+        if (!have[j]) continue;
+        corners[n] = j;
+        weights[n] = w;
+        targets[n] = origins[j];
+        ++n;
+    }
+    if (n == 0) return false;
+    uint8_t clear[8];
+    scene.clearTo(origins[i], {targets, n}, {clear, n});
+    double total = 0;
+    for (size_t k = 0; k < n; ++k) total += clear[k] ? weights[k] : 0;
+    if (total <= 0) return false;
+    out = sh::SH9Color{};
+    for (size_t k = 0; k < n; ++k)
+        if (clear[k]) out = sh::add(out, sh::scale(indirect[corners[k]], weights[k] / total));
+    return true;
+}
+
+}  // namespace
+
 ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
                                const ShTraceStats& traced, Log& log) {
     const auto start = std::chrono::steady_clock::now();
@@ -307,21 +401,49 @@ ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAl
     const std::vector<Vec3> directions = gatherDirections(ctx.options.shGatherSamples);
     const size_t numPoints = grid.points.size();
     const double gridScale = ctx.options.gridScale;
-    std::vector<uint8_t> gathered(numPoints, 0);
-
-    auto body = [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (i >= traced.origins.size() || (i < traced.solid.size() && traced.solid[i])) continue;
-            const Vec3 origin = traced.origins[i];  // where TraceGridSH lit it (nudged out of solid)
-            const sh::SH9Color indirect = sh::scale(gatherProbe(scene, origin, directions), gridScale);
-            sh::GridPointSH& p = grid.points[i];
-            for (int k = 0; k < sh::kCoeffCount; ++k)
-                for (int ch = 0; ch < 3; ++ch) p.coeffs[k][ch] = float(double(p.coeffs[k][ch]) + indirect.c[k][ch]);
-            gathered[i] = 1;
-        }
+    const int step = std::max(1, ctx.options.shGatherStep);
+    // Indirect light varies slowly: probes of the coarse lattice (every `step`-th per axis) gather,
+    // the others interpolate them, and gather themselves where a coarse corner is missing.
+    std::vector<sh::SH9Color> indirect(numPoints);
+    std::vector<uint8_t> have(numPoints, 0), gathered(numPoints, 0);
+    auto free = [&](size_t i) { return i < traced.origins.size() && !(i < traced.solid.size() && traced.solid[i]); };
+    auto gatherAt = [&](size_t i) {
+        // Where TraceGridSH lit the probe (nudged out of solid).
+        indirect[i] = gatherProbe(scene, traced.origins[i], directions);
+        have[i] = gathered[i] = 1;
     };
     tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, numPoints, 16), body); });
+    auto parallel = [&](auto&& visit) {
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, numPoints, 16), [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t i = r.begin(); i != r.end(); ++i)
+                    if (free(i)) visit(i);
+            });
+        });
+    };
+    parallel([&](size_t i) {
+        if (onCoarseLattice(i, grid.bounds, step)) gatherAt(i);
+    });
+    // Reads only what the first pass wrote, so the order of this pass does not matter.
+    std::vector<uint8_t> fine(numPoints, 0);
+    parallel([&](size_t i) {
+        if (have[i]) return;
+        sh::SH9Color value;
+        if (interpolateCoarse(i, grid.bounds, step, indirect, have, scene, traced.origins, value)) {
+            indirect[i] = value;
+            fine[i] = 1;
+        } else {
+            indirect[i] = gatherProbe(scene, traced.origins[i], directions);
+            gathered[i] = 1;
+        }
+    });
+    for (size_t i = 0; i < numPoints; ++i) {
+        if (!gathered[i] && !fine[i]) continue;
+        const sh::SH9Color add = sh::scale(indirect[i], gridScale);
+        sh::GridPointSH& p = grid.points[i];
+        for (int k = 0; k < sh::kCoeffCount; ++k)
+            for (int ch = 0; ch < 3; ++ch) p.coeffs[k][ch] = float(double(p.coeffs[k][ch]) + add.c[k][ch]);
+    }
 
     // Points in solid took their value from free neighbours before the gather: take it again.
     std::vector<uint8_t> unset(numPoints, 0);
@@ -329,12 +451,15 @@ ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAl
     fillFromNeighbours(grid.points, unset, {grid.bounds[0], grid.bounds[1], grid.bounds[2]});
 
     ShGatherStats stats;
-    for (uint8_t t : gathered) stats.probes += t;
+    for (size_t i = 0; i < numPoints; ++i) {
+        stats.probes += gathered[i];
+        stats.interpolated += fine[i];
+    }
     stats.rays = stats.probes * directions.size();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log.info(strCat("SH gather: ", stats.probes, " probes x ", directions.size(), " rays = ", stats.rays, " rays in ",
                     stats.seconds, " s (", stats.seconds > 0 ? uint64_t(double(stats.rays) / stats.seconds) : 0,
-                    " rays/s)"));
+                    " rays/s), ", stats.interpolated, " probes interpolated (step ", step, ")"));
     return stats;
 }
 

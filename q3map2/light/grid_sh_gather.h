@@ -58,15 +58,18 @@ std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<
 std::vector<Vec3> gatherDirections(int count);
 
 struct ShGatherStats {
-    uint64_t probes = 0;
+    uint64_t probes = 0;        // probes that traced rays
+    uint64_t interpolated = 0;  // probes that took the trilinear mean of coarse probes (-shgatherstep)
     uint64_t rays = 0;
     double seconds = 0;
 };
 
 // Adds the gathered indirect irradiance (times -gridscale) to every point of `grid` not marked in
-// `solid`, then refills the points in solid from their neighbours (as TraceGridSH does). Parallel
-// over probes; each probe sums its own rays in a fixed order, so the result does not depend on the
-// thread count.
+// `solid`, then refills the points in solid from their neighbours (as TraceGridSH does). With
+// -shgatherstep S > 1 only the probes whose indices are multiples of S gather; the others take the
+// trilinear mean of the coarse probes around them (and gather themselves when one of those is in
+// solid or past the grid). Parallel over probes; each probe sums its own rays in a fixed order and
+// interpolation reads only coarse results, so the result does not depend on the thread count.
 // `traced` holds where TraceGridSH lit each probe (ShTraceStats::solid and ::origins).
 ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
                                const ShTraceStats& traced, Log& log);
@@ -90,6 +93,9 @@ public:
     sh::Rgb radianceAlong(Vec3 origin, Vec3 direction) const;
     // The same for many directions from one origin (out[i] for directions[i]), traced in packets.
     void radianceAlong(Vec3 origin, std::span<const Vec3> directions, std::span<sh::Rgb> out) const;
+    // clear[k] = no surface lies between `a` and targets[k] (at most 8 targets; probes that may
+    // share their light), traced as one packet.
+    void clearTo(Vec3 a, std::span<const Vec3> targets, std::span<uint8_t> clear) const;
 
 private:
     struct Impl;

@@ -94,7 +94,7 @@ void writeLitBsp(LightContext& ctx, Log& log) {
     injectCommandLine(entities[0], ctx.commandLine);
     if (std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx)) markDeluxeWorldspawn(entities[0], *deluxe);
     ctx.bsp.entities = bsp::unparseEntities(entities);
-    writeFileAtomic(ctx.bspPath, bsp::serializeBsp(ctx.bsp));
+    bsp::writeBsp(ctx.bspPath, ctx.bsp);
     log.info(strCat("wrote ", ctx.bspPath.string()));
 }
 

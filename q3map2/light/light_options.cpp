@@ -255,6 +255,9 @@ cli::OptionTable<O> buildLightTable() {
            kImplemented, [](O& o, Values) { o.sh = o.shGather = true; });
     integer({"-shgathersamples"}, &O::shGatherSamples, Range::between(16, 65536),
             "Rays per SH probe of -shgather (a fixed spherical Fibonacci set)", kImplemented);
+    integer({"-shgatherstep"}, &O::shGatherStep, Range::between(1, 8),
+            "Gather from every Nth SH probe per axis only and interpolate the others (1: every probe)",
+            kImplemented);
     real({"-skyscale", "-sky"}, &O::skyScale, Range::atLeast(0), "Scale of sky and sun light", kImplemented);
     flag({"-slowallocate"}, &O::slowAllocate, "Older, slower lightmap packing", kNotImplemented);
     action({"-sphericalscale", "-spherical"}, {scaleArg}, 1, cli::formatNumber(defaults.pointScale),

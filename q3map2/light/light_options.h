@@ -138,6 +138,7 @@ struct LightOptions {
     float gridSizeSH[3] = {0, 0, 0};  // -gridsh X Y Z; all 0 = derived from gridScaleSH
     bool shGather = false;          // -shgather: add gathered indirect light to the SH grid
     int shGatherSamples = 64;       // -shgathersamples: rays per probe (docs/sh-for-mappers.md)
+    int shGatherStep = 2;           // -shgatherstep: probes that gather, every Nth per axis
 };
 
 const cli::OptionTable<LightOptions>& lightOptionTable();

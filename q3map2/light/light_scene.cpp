@@ -6,6 +6,7 @@
 
 #include "entity_keys.h"
 #include "light_context.h"
+#include "lightmap_layout.h"
 #include "light_text.h"
 #include "patch.h"
 
@@ -41,22 +42,6 @@ SceneSurface planarGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 off
             out.triangles.push_back(idx >= 0 && idx < s.numVerts ? static_cast<uint32_t>(idx) : 0u);
         }
     return out;
-}
-
-patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {
-    patch::ControlGrid grid;
-    grid.width = s.patchWidth;
-    grid.height = s.patchHeight;
-    for (int v = 0; v < s.numVerts; ++v) {
-        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
-        patch::PatchVertex pv;
-        pv.xyz = Vec3::fromArray(dv.xyz) + offset;
-        pv.normal = Vec3::fromArray(dv.normal);
-        pv.st[0] = dv.st[0];
-        pv.st[1] = dv.st[1];
-        grid.points.push_back(pv);
-    }
-    return grid;
 }
 
 SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {

@@ -185,7 +185,7 @@ int runImportStage(const CommonOptions& common, Log& log) {
     }
     const std::filesystem::path dir = lightmapExportDir(bspPath);
     const int replaced = importLightmapPages(bsp, dir, bspPath.string(), log);
-    writeFileAtomic(bspPath, bsp::serializeBsp(bsp));
+    bsp::writeBsp(bspPath, bsp);
     log.info(strCat(replaced, " lightmap pages imported from ", dir.string(), " into ", bspPath.string()));
     return 0;
 }

@@ -42,6 +42,46 @@ SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex, std::span
     return g;
 }
 
+patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset,
+                                    std::span<const Vec3> normals) {
+    patch::ControlGrid grid;
+    grid.width = s.patchWidth;
+    grid.height = s.patchHeight;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const size_t vi = size_t(s.firstVert + v);
+        const bsp::DrawVert& dv = bsp.drawVerts.at(vi);
+        patch::PatchVertex pv;
+        pv.xyz = Vec3::fromArray(dv.xyz) + offset;
+        pv.normal = vi < normals.size() ? normals[vi] : Vec3::fromArray(dv.normal);
+        pv.st[0] = dv.st[0];
+        pv.st[1] = dv.st[1];
+        pv.lightmap[0] = dv.lightmap[0];
+        pv.lightmap[1] = dv.lightmap[1];
+        grid.points.push_back(pv);
+    }
+    return grid;
+}
+
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals) {
+    patch::ControlGrid grid = patchControlGrid(bsp, s, Vec3{}, normals);
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        grid.points[v].st[0] = float(int(v) % std::max(1, s.patchWidth));
+        grid.points[v].st[1] = float(int(v) / std::max(1, s.patchWidth));
+    }
+    CurvedMesh mesh;
+    if (!patch::isValidGrid(grid)) return mesh;
+    const patch::PatchMesh tess = patch::tessellateForLighting(grid);
+    mesh.width = tess.width;
+    mesh.height = tess.height;
+    for (const patch::PatchVertex& v : tess.verts) {
+        mesh.positions.push_back(v.xyz);
+        mesh.normals.push_back(v.normal);
+        mesh.controlU.push_back(v.st[0]);
+        mesh.controlV.push_back(v.st[1]);
+    }
+    return mesh;
+}
+
 std::array<std::array<float, 2>, 4> subsampleOffsets(int level) {
     const float b = 0.25f / float(1 << std::clamp(level, 0, 20));
     return {{{-b, -b}, {b, -b}, {-b, b}, {b, b}}};

@@ -9,6 +9,7 @@
 
 #include "bspfile.h"
 #include "log.h"
+#include "patch.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -50,6 +51,15 @@ struct CurvedMesh {
     std::vector<Vec3> normals;
     std::vector<float> controlU, controlV;
 };
+
+// The control grid of a patch surface in world space (`offset` = its brush model's origin), with
+// texture st, BSP lightmap st, and the normals of `normals` (per BSP draw vertex) when given.
+patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset,
+                                    std::span<const Vec3> normals = {});
+// The lighting tessellation of a patch for the layout: each point's position in control-point index
+// space is carried through the tessellation in the st channel (Bezier blending of evenly spaced
+// indices is linear, so the result is the exact control-space coordinate). Model space.
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals = {});
 
 // What the layout needs of one BSP surface.
 struct SurfaceGeometry {

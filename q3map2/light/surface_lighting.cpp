@@ -18,37 +18,6 @@ namespace {
 constexpr float kLuxelEpsilon = 0.125f;  // LUXEL_EPSILON of q3map2's point-in-solid test
 
 
-// Patch mesh for the layout, with each point's position in control-point index space carried
-// through the tessellation in the texture-coordinate channel (Bezier blending of evenly spaced
-// indices is linear, so the result is the exact control-space coordinate).
-CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> shadedNormals) {
-    patch::ControlGrid grid;
-    grid.width = s.patchWidth;
-    grid.height = s.patchHeight;
-    for (int v = 0; v < s.numVerts; ++v) {
-        const bsp::DrawVert& dv = bsp.drawVerts[static_cast<size_t>(s.firstVert + v)];
-        patch::PatchVertex pv;
-        pv.xyz = Vec3::fromArray(dv.xyz);
-        const size_t vi = static_cast<size_t>(s.firstVert + v);
-        pv.normal = vi < shadedNormals.size() ? shadedNormals[vi] : Vec3::fromArray(dv.normal);
-        pv.st[0] = static_cast<float>(v % std::max(1, s.patchWidth));
-        pv.st[1] = static_cast<float>(v / std::max(1, s.patchWidth));
-        grid.points.push_back(pv);
-    }
-    CurvedMesh mesh;
-    if (!patch::isValidGrid(grid)) return mesh;
-    patch::PatchMesh tess = patch::tessellateForLighting(grid);
-    mesh.width = tess.width;
-    mesh.height = tess.height;
-    for (const patch::PatchVertex& v : tess.verts) {
-        mesh.positions.push_back(v.xyz);
-        mesh.normals.push_back(v.normal);
-        mesh.controlU.push_back(v.st[0]);
-        mesh.controlV.push_back(v.st[1]);
-    }
-    return mesh;
-}
-
 // q3map2 MapSingleLuxel: a luxel in solid is moved by half a luxel along the lightmap's s and t
 // steps (never along the normal, so that a luxel under a detail brush lying on the surface stays
 // in solid and is filled from its neighbours instead of being lit from the far side of that brush).

@@ -35,6 +35,15 @@ std::vector<std::string> casesMaps() {
     return kMaps;
 }
 
+// The sets checked in this build: all of them, less those marked "sampledBuilds": "skip" where the
+// real maps are sampled (their code paths are covered there by a cheaper or wider set).
+std::vector<OptionSet> checkedSets(const std::vector<OptionSet>& sets) {
+    std::vector<OptionSet> checked;
+    for (const OptionSet& set : sets)
+        if (!(set.skipWhenSampled && q3::test::realBspsAreSampled())) checked.push_back(set);
+    return checked;
+}
+
 std::vector<DeterminismCase> determinismCases() {
     std::vector<OptionSet> sets;
     try {
@@ -44,7 +53,7 @@ std::vector<DeterminismCase> determinismCases() {
     }
     std::vector<DeterminismCase> cases;
     for (const std::string& map : casesMaps())
-        for (const OptionSet& set : sets) cases.push_back({map, set, sets});
+        for (const OptionSet& set : checkedSets(sets)) cases.push_back({map, set, sets});
     return cases;
 }
 
@@ -127,14 +136,21 @@ TEST(DeterminismSetup, OptionSetsAreReadableAndEveryCaseIsRegistered) {
     const std::vector<OptionSet> sets = q3::test::readOptionSets(q3::test::optionSetsFile());
     EXPECT_GE(sets.size(), 6u);
     for (const std::string& map : casesMaps()) EXPECT_TRUE(fs::exists(q3::test::realBsp(map)));
-    EXPECT_EQ(determinismCases().size(), casesMaps().size() * sets.size());
-    bool hasLightSh = false, hasJson = false;
-    for (const OptionSet& s : sets) {
-        hasLightSh = hasLightSh || std::find(s.args.begin(), s.args.end(), "-sh") != s.args.end();
+    const std::vector<OptionSet> checked = checkedSets(sets);
+    EXPECT_EQ(determinismCases().size(), casesMaps().size() * checked.size());
+    const auto has = [](const OptionSet& s, const char* option) {
+        return std::find(s.args.begin(), s.args.end(), option) != s.args.end();
+    };
+    bool hasLightSh = false, hasJson = false, hasRelease = false;
+    for (const OptionSet& s : checked) {
+        hasLightSh = hasLightSh || has(s, "-sh");
         hasJson = hasJson || (!s.args.empty() && s.args.front() == "-json");
+        // The release options together (radiosity, dirt, deluxe maps) in every build.
+        hasRelease = hasRelease || (has(s, "-bounce") && has(s, "-dirty") && has(s, "-deluxe"));
     }
     EXPECT_TRUE(hasLightSh);
     EXPECT_TRUE(hasJson);
+    EXPECT_TRUE(hasRelease);
 }
 
 TEST(DeterminismSetup, BadOptionSetFilesAreRejected) {
@@ -151,6 +167,15 @@ TEST(DeterminismSetup, BadOptionSetFilesAreRejected) {
     EXPECT_THROW(q3::test::readOptionSets(write("{\"sets\": {\"a\": {\"args\": []}}}")), std::runtime_error);
     EXPECT_THROW(q3::test::readOptionSets(write("{\"sets\": {\"a\": {\"args\": [\"-x\"], \"after\": \"b\"}}}")),
                  std::runtime_error);
+    EXPECT_THROW(q3::test::readOptionSets(write("{\"sets\": {\"a\": {\"args\": [\"-x\"], \"sampledBuilds\": \"run\"}}}")),
+                 std::runtime_error);
+    EXPECT_THROW(q3::test::readOptionSets(write("{\"sets\": {\"a\": {\"args\": [\"-x\"], \"sampledBuilds\": true}}}")),
+                 std::runtime_error);
+    const auto skipped = q3::test::readOptionSets(
+        write("{\"sets\": {\"a\": {\"args\": [\"-x\"], \"sampledBuilds\": \"skip\"}, \"b\": {\"args\": [\"-y\"]}}}"));
+    ASSERT_EQ(skipped.size(), 2u);
+    EXPECT_TRUE(skipped[0].skipWhenSampled);
+    EXPECT_FALSE(skipped[1].skipWhenSampled);
     const auto sets = q3::test::readOptionSets(
         write("{\"sets\": {\"u\": {\"args\": [\"-json\", \"-unpack\"]}, \"p\": {\"args\": [\"-json\"], \"after\": \"u\"}}}"));
     ASSERT_EQ(sets.size(), 2u);

@@ -37,6 +37,12 @@ std::vector<OptionSet> readOptionSets(const std::filesystem::path& file) {
             if (!body["after"].IsString()) throw fail("set \"" + set.name + "\": \"after\" is not a string");
             set.after = body["after"].GetString();
         }
+        if (body.HasMember("sampledBuilds")) {
+            const auto& sampled = body["sampledBuilds"];
+            if (!sampled.IsString() || std::string(sampled.GetString()) != "skip")
+                throw fail("set \"" + set.name + "\": \"sampledBuilds\" must be \"skip\"");
+            set.skipWhenSampled = true;
+        }
         sets.push_back(std::move(set));
     }
     for (const OptionSet& set : sets) {

@@ -12,6 +12,7 @@ struct OptionSet {
     std::string name;
     std::vector<std::string> args;  // stage options, e.g. {"-light", "-fast", "-sh"}
     std::string after;              // a set that must run first on the same folder ("" if none)
+    bool skipWhenSampled = false;   // "sampledBuilds": "skip": not checked where real maps are sampled
 };
 
 // bench/option-sets.json of the source tree.

@@ -56,6 +56,23 @@ MaskedStats maskedStats(const Image& image, const std::vector<uint8_t>& mask) {
     return stats;
 }
 
+LumaShift lumaShift(const Image& before, const Image& after, double tolerance) {
+    if (before.width != after.width || before.height != after.height)
+        throw std::invalid_argument("screenshots of different sizes cannot be compared");
+    LumaShift shift;
+    double sum = 0;
+    for (int y = 0; y < before.height; ++y)
+        for (int x = 0; x < before.width; ++x) {
+            const double change = luminance(after.texel(x, y)) - luminance(before.texel(x, y));
+            sum += change;
+            if (change > tolerance) ++shift.brighter;
+            if (change < -tolerance) ++shift.darker;
+        }
+    const size_t pixels = size_t(before.width) * size_t(before.height);
+    if (pixels) shift.meanChange = sum / double(pixels);
+    return shift;
+}
+
 Image readPng(const std::filesystem::path& path) {
     const std::vector<uint8_t> bytes = readFileBytes(path);
     return decodePng(bytes, path.string());

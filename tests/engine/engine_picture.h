@@ -37,6 +37,16 @@ struct MaskedStats {
 };
 MaskedStats maskedStats(const Image& image, const std::vector<uint8_t>& mask);
 
+// How two same-sized shots of one view compare pixel by pixel in luma: how many pixels of `after`
+// are brighter than in `before` by more than `tolerance`, how many darker, and the mean change.
+// Throws std::invalid_argument for pictures of different sizes.
+struct LumaShift {
+    size_t brighter = 0;
+    size_t darker = 0;
+    double meanChange = 0;  // mean of after - before over every pixel
+};
+LumaShift lumaShift(const Image& before, const Image& after, double tolerance);
+
 // Reads and decodes a PNG (an engine screenshot). Throws FileError / ImageError.
 Image readPng(const std::filesystem::path& path);
 

@@ -153,4 +153,12 @@ std::vector<double> darkPlacesGridSums(const std::string& text, const std::strin
     return sums;
 }
 
+std::filesystem::path copyForEngines(const std::filesystem::path& bsp, const std::filesystem::path& engineDir,
+                                     const std::string& name) {
+    std::filesystem::create_directories(engineDir);
+    const std::filesystem::path copy = engineDir / (name + ".bsp");
+    std::filesystem::copy_file(bsp, copy, std::filesystem::copy_options::overwrite_existing);
+    return copy;
+}
+
 }  // namespace q3::enginetest

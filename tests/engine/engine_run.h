@@ -54,6 +54,11 @@ std::filesystem::path screenshotPath(const std::filesystem::path& prefix, const 
                                      const std::string& mode);
 
 // The lines of `text` that contain `needle`.
+// Copies `bsp` into `engineDir` (created) as <name>.bsp: the engines see it under a name no package
+// ships. Returns the copy's path.
+std::filesystem::path copyForEngines(const std::filesystem::path& bsp, const std::filesystem::path& engineDir,
+                                     const std::string& name);
+
 std::vector<std::string> linesWith(const std::string& text, const std::string& needle);
 
 // DarkPlaces' light-grid samples the scripts print (getlight() x 128, e.g. "lightgrid at

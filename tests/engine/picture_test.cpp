@@ -59,5 +59,23 @@ TEST(EnginePicture, DifferenceFindsTheModel) {
     EXPECT_THROW(maskedStats(filled(10, 9, 0, 0, 0), mask), std::invalid_argument);
 }
 
+TEST(EnginePicture, LumaShiftCountsBrighterAndDarkerPixels) {
+    const Image before = filled(10, 10, 40, 40, 40);
+    Image after = before;
+    for (int x = 0; x < 10; ++x)
+        for (int c = 0; c < 3; ++c) after.texel(x, 0)[c] = 60;  // a row 20 brighter
+    for (int c = 0; c < 3; ++c) after.texel(0, 9)[c] = 30;       // one pixel 10 darker
+    after.texel(5, 5)[1] = 41;                                   // noise within the tolerance
+    const LumaShift shift = lumaShift(before, after, 2.0);
+    EXPECT_EQ(shift.brighter, 10u);
+    EXPECT_EQ(shift.darker, 1u);
+    EXPECT_NEAR(shift.meanChange, (10 * 20.0 - 10.0 + 0.7152) / 100.0, 1e-9);
+    const LumaShift reverse = lumaShift(after, before, 2.0);
+    EXPECT_EQ(reverse.brighter, 1u);
+    EXPECT_EQ(reverse.darker, 10u);
+    EXPECT_EQ(lumaShift(before, before, 0.0).brighter, 0u);
+    EXPECT_THROW(lumaShift(before, filled(9, 10, 0, 0, 0), 2.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace q3::enginetest

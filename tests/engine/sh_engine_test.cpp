@@ -75,11 +75,8 @@ TEST(ShGridInEngines, ShAndBspxOutputsLoadAndKeepLegacyLumps) {
     expectSameLegacyLumps(plain, bspx, "shbspx");
 
     const fs::path engineDir = dir / "engine";
-    fs::create_directories(engineDir);
-    const fs::path shCopy = engineDir / (kMap + "_sh.bsp");
-    const fs::path bspxCopy = engineDir / (kMap + "_shbspx.bsp");
-    fs::copy_file(shPath, shCopy);
-    fs::copy_file(bspxPath, bspxCopy);
+    const fs::path shCopy = copyForEngines(shPath, engineDir, kMap + "_sh");
+    const fs::path bspxCopy = copyForEngines(bspxPath, engineDir, kMap + "_shbspx");
     // ioquake3 refuses version 47 by design, so the v47 file goes to DarkPlaces only.
     const RunResult shLoad = runLoadCheck(shCopy, "dp", engineDir / "logs");
     std::cout << shLoad.output;

@@ -14,35 +14,6 @@
 namespace q3::light {
 namespace {
 
-// The patch's lighting tessellation with each point's control-grid position carried in st (the
-// Bezier blend of evenly spaced indices is linear, so it comes out exact).
-CurvedMesh tessellatedPatch(const bsp::Bsp& bsp, const bsp::Surface& s) {
-    patch::ControlGrid grid;
-    grid.width = s.patchWidth;
-    grid.height = s.patchHeight;
-    for (int v = 0; v < s.numVerts; ++v) {
-        const bsp::DrawVert& dv = bsp.drawVerts[size_t(s.firstVert + v)];
-        patch::PatchVertex pv;
-        pv.xyz = Vec3::fromArray(dv.xyz);
-        pv.normal = Vec3::fromArray(dv.normal);
-        pv.st[0] = float(v % s.patchWidth);
-        pv.st[1] = float(v / s.patchWidth);
-        grid.points.push_back(pv);
-    }
-    CurvedMesh mesh;
-    if (!patch::isValidGrid(grid)) return mesh;
-    const patch::PatchMesh tess = patch::tessellateForLighting(grid);
-    mesh.width = tess.width;
-    mesh.height = tess.height;
-    for (const patch::PatchVertex& v : tess.verts) {
-        mesh.positions.push_back(v.xyz);
-        mesh.normals.push_back(v.normal);
-        mesh.controlU.push_back(v.st[0]);
-        mesh.controlV.push_back(v.st[1]);
-    }
-    return mesh;
-}
-
 // Lays out every lightmapped surface of real maps, packs made-up texels and checks that the BSP
 // fields written back are consistent.
 TEST(LightmapRealData, LayoutAndPackingAreConsistent) {
@@ -56,7 +27,7 @@ TEST(LightmapRealData, LayoutAndPackingAreConsistent) {
             const bsp::Surface& surface = original.surfaces[s];
             if (!isLightmappedSurface(surface, false)) continue;
             SurfaceGeometry g = surfaceGeometry(original, int(s));
-            if (surface.surfaceType == bsp::MST_PATCH) g.mesh = tessellatedPatch(original, surface);
+            if (surface.surfaceType == bsp::MST_PATCH) g.mesh = curvedMesh(original, surface);
             const auto lm = layoutSurfaceLightmap(g, {}, {}, &log);
             ASSERT_TRUE(lm.has_value()) << name << " surface " << s;
             ++surfaces;
@@ -151,7 +122,7 @@ TEST(LightmapRealData, MergedLayoutCoversEverySurfaceOnce) {
                 if (!isLightmappedSurface(surface, false)) continue;
                 SurfaceLightmapInput in;
                 in.geometry = surfaceGeometry(original, s);
-                if (surface.surfaceType == bsp::MST_PATCH) in.geometry.mesh = tessellatedPatch(original, surface);
+                if (surface.surfaceType == bsp::MST_PATCH) in.geometry.mesh = curvedMesh(original, surface);
                 in.traits.model = int(m);
                 in.traits.shader = original.shaders[size_t(surface.shaderNum)].name;
                 inputs.push_back(std::move(in));
@@ -291,7 +262,7 @@ TEST(LightmapRealData, CurvedPatchSizesMatchShippedLightmaps) {
             const bsp::Surface& surface = b.surfaces[si];
             if (surface.surfaceType != bsp::MST_PATCH || surface.lightmapNum < 0) continue;
             SurfaceGeometry g = surfaceGeometry(b, int(si));
-            g.mesh = tessellatedPatch(b, surface);
+            g.mesh = curvedMesh(b, surface);
             const auto lm = layoutSurfaceLightmap(g, {}, {});
             ASSERT_TRUE(lm.has_value());
             if (lm->axisNum >= 0) continue;  // flat patch

@@ -7,6 +7,9 @@
 #include <cmath>
 
 #include "file_io.h"
+#include "image.h"
+#include "light_styles.h"
+#include "lightmap_pack.h"
 #include "light_contribution.h"
 #include "quality_scene.h"
 #include "sh.h"
@@ -30,7 +33,7 @@ std::vector<uint8_t> solidTga(uint8_t r, uint8_t g, uint8_t b) {
 
 // Floor (textured 200/100/50) at z = 0 facing up, ceiling at z = 256 facing down, a spotlight under
 // the ceiling pointing at the floor: the ceiling is behind the spot and gets no direct light.
-std::filesystem::path roomScene(const std::string& name) {
+std::filesystem::path roomScene(const std::string& name, const std::string& spotStyle = "") {
     bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/ceiling"});
     quality::addQuad(b, {0, 0, 0}, {0, kRoom, 0}, {kRoom, 0, 0}, 0);           // normal +z
     quality::addQuad(b, {0, 0, kHeight}, {kRoom, 0, 0}, {0, kRoom, 0}, 1);     // normal -z
@@ -39,6 +42,7 @@ std::filesystem::path roomScene(const std::string& name) {
     bsp::Entity spot;
     spot.pairs = {{"classname", "light"}, {"origin", "256 256 240"}, {"light", "900"}, {"target", "down"},
                   {"radius", "600"}};
+    if (!spotStyle.empty()) spot.pairs.push_back({"_style", spotStyle});
     bsp::Entity target;
     target.pairs = {{"classname", "info_null"}, {"origin", "256 256 0"}, {"targetname", "down"}};
     ents.push_back(spot);
@@ -143,6 +147,29 @@ TEST(RadiosityStage, DumpWritesEachPassAsMapPrefab) {
     EXPECT_NE(first.find("\"classname\" \"light\""), std::string::npos);
     EXPECT_NE(first.find("\"_color\""), std::string::npos);
     EXPECT_TRUE(std::filesystem::exists(prefab.string() + "_bounce_001.map"));
+}
+
+// q3map2 bounced styled light into style 0 (lighting surfaces that must stay dark while the light
+// is off); here the emitters made from a style's light keep that style.
+TEST(RadiosityStage, StyledLightBouncesOnlyIntoItsStyle) {
+    const auto path = roomScene("styledbounce", "1");
+    ASSERT_EQ(quality::runLight(path, {"-bounce", "1"}), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    const auto c = quality::luxelNear(lit, 1, {256, 256, kHeight});
+    EXPECT_EQ(texelColor(lit, 1, c[0], c[1]), (Vec3{0, 0, 0}));  // style 0 of the ceiling stays dark
+    const auto f = quality::luxelNear(lit, 0, {256, 256, 0});
+    EXPECT_EQ(texelColor(lit, 0, f[0], f[1]), (Vec3{0, 0, 0}));  // and of the floor
+
+    // The styled page holds the ceiling's bounce at the ceiling's texels.
+    const auto page = externalLightmapDir(path, "") / externalLightmapName(0);
+    ASSERT_TRUE(std::filesystem::exists(page));
+    const Image picture = decodeTga(readFileBytes(page), page.string());
+    const bsp::Surface& ceiling = lit.surfaces[1];
+    const int x = std::min(ceiling.lightmapX + c[0], picture.width - 1);
+    const int y = std::min(ceiling.lightmapY + c[1], picture.height - 1);
+    const uint8_t* texel = &picture.rgba[(size_t(y) * size_t(picture.width) + size_t(x)) * 4];
+    EXPECT_GT(int(texel[0]), 5);
+    EXPECT_GT(int(texel[0]), int(texel[2]));  // the floor's colour
 }
 
 // Sum of the legacy grid bytes, and the SH irradiance towards +z (what faces the ceiling).
