@@ -60,9 +60,8 @@ void orientWinding(Light& light) {
 
 }  // namespace
 
-BouncePasses::BouncePasses(const LightContext& ctx, Log& log) : ctx_(ctx), log_(log) {
-    albedo_ = loadShaderAlbedo(ctx, images_, log);
-}
+BouncePasses::BouncePasses(const LightContext& ctx, const std::vector<ShaderAlbedo>& albedo, Log& log)
+    : ctx_(ctx), log_(log), albedo_(albedo) {}
 
 std::vector<Light> BouncePasses::emitters(const std::vector<SurfaceLight>& previous, int bounce, Vec3 ambient) {
     std::vector<BounceSurface> surfaces;

@@ -19,7 +19,8 @@ struct SurfaceLight;
 
 class BouncePasses {
 public:
-    BouncePasses(const LightContext& ctx, Log& log);
+    // `albedo`: per BSP shader (shaderAlbedo), kept alive by the caller.
+    BouncePasses(const LightContext& ctx, const std::vector<ShaderAlbedo>& albedo, Log& log);
     // The emitters of bounce number `bounce` (1-based) from the light of the previous pass, less
     // `ambient` (the world ambient is not re-emitted, as in q3map2).
     std::vector<Light> emitters(const std::vector<SurfaceLight>& previous, int bounce, Vec3 ambient);
@@ -27,8 +28,7 @@ public:
 private:
     const LightContext& ctx_;
     Log& log_;
-    std::vector<LightImage> images_;       // owned texture images
-    std::vector<ShaderAlbedo> albedo_;     // per BSP shader
+    const std::vector<ShaderAlbedo>& albedo_;  // per BSP shader
 };
 
 }  // namespace q3::light

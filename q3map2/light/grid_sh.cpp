@@ -278,9 +278,7 @@ ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
     bsp::detachShGrid(ctx.bsp);  // an SH grid of the input BSP is not kept beside the new one
     sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
     if (ctx.options.shGather) {  // indirect light on top of the direct light traced above
-        std::vector<LightImage> images;
-        const std::vector<ShaderAlbedo> albedo = loadShaderAlbedo(ctx, images, log);
-        const ShGatherStats gathered = gatherIndirectSH(ctx, albedo, grid, stats, log);
+        const ShGatherStats gathered = gatherIndirectSH(ctx, shaderAlbedo(ctx, log), grid, stats, log);
         ctx.stats.shGatherRays = gathered.rays;
         ctx.stats.shGatherSeconds = gathered.seconds;
     }

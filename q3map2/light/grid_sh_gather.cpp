@@ -86,6 +86,14 @@ Vec3 meanOf(std::span<const Vec3> values) {
 
 }  // namespace
 
+const std::vector<ShaderAlbedo>& shaderAlbedo(LightContext& ctx, Log& log) {
+    if (!ctx.albedo) {
+        ctx.albedo = std::make_unique<ShaderAlbedoSet>();
+        ctx.albedo->shaders = loadShaderAlbedo(ctx, ctx.albedo->images, log);
+    }
+    return ctx.albedo->shaders;
+}
+
 std::vector<Vec3> gatherDirections(int count) {
     std::vector<Vec3> out;
     out.reserve(size_t(std::max(0, count)));
@@ -127,7 +135,7 @@ std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<
         }
         if (!out[i].image) ++missing;
     }
-    if (missing > 0) log.info(strCat("SH gather: ", missing, " shaders without an image use 0.5 grey albedo"));
+    if (missing > 0) log.info(strCat(missing, " shaders without an image reflect 0.5 grey"));
     return out;
 }
 

@@ -54,6 +54,14 @@ struct ShaderAlbedo {
 // 0.5 grey. `images` owns the loaded images.
 std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<LightImage>& images, Log& log);
 
+// The shader albedo of a run, loaded by the first step that needs it (-bounce, -shgather) and kept
+// in the context for the others.
+struct ShaderAlbedoSet {
+    std::vector<LightImage> images;     // owned texture images
+    std::vector<ShaderAlbedo> shaders;  // per BSP shader, pointing into `images`
+};
+const std::vector<ShaderAlbedo>& shaderAlbedo(LightContext& ctx, Log& log);
+
 // N unit directions of a spherical Fibonacci set: equal-area cells, deterministic.
 std::vector<Vec3> gatherDirections(int count);
 

@@ -120,13 +120,10 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
         phase("lightmaps");
         lightLightmaps(ctx, log);
     }
-    // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each bounce);
-    // the grids receive them only with -bouncegrid.
-    const size_t directLights = ctx.lights.size();
-    ctx.lights.insert(ctx.lights.end(), ctx.bounceLights.begin(), ctx.bounceLights.end());
     phase("vertex light");
-    lightVertexes(ctx, log);
-    if (!options.bounceGrid) ctx.lights.resize(directLights);
+    lightVertexes(ctx, log);  // also from the radiosity emitters, ctx.bounceLights
+    // The grids light from ctx.lights: with -bouncegrid it gains the radiosity emitters.
+    if (options.bounceGrid) ctx.lights.insert(ctx.lights.end(), ctx.bounceLights.begin(), ctx.bounceLights.end());
     // The SH grid (SetupGridSH / TraceGridSH) runs beside the legacy grid from the same light list.
     if (!options.noGrid) {
         phase("light grid");

@@ -58,6 +58,7 @@ struct LightContext {
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
     std::vector<int> receiveShadows;     // per BSP surface: shadow group it receives from (0 = none)
     std::vector<Vec3> shadedNormals;     // per draw vertex; empty = the BSP's normals (phong.h)
+    std::unique_ptr<ShaderAlbedoSet> albedo;  // textures as reflectors (-bounce, -shgather); shaderAlbedo()
     std::vector<int> skyIndices;         // per BSP shader
     std::unique_ptr<BspTree> tree;
     SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
@@ -99,7 +100,7 @@ int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights);
 // Lightmaps of every lightmapped surface (direct light, then -bounce passes whose emitters are
 // kept in ctx.bounceLights), packed into the BSP (or external pages).
 void lightLightmaps(LightContext& ctx, Log& log);
-// Vertex colours of every draw vertex.
+// Vertex colours of every draw vertex, from ctx.lights and the radiosity emitters ctx.bounceLights.
 void lightVertexes(LightContext& ctx, Log& log);
 // The legacy light grid (lump 15); returns the grid size written back to worldspawn when it grew.
 void lightGrid(LightContext& ctx, Log& log);

@@ -176,7 +176,7 @@ void lightLightmaps(LightContext& ctx, Log& log) {
                                                SurfacePass{ctx.lights, true, deluxe}, log);
     std::vector<SurfaceLight> total = o.bounceOnly && o.bounce > 0 ? emptyLike(pass) : pass;
     if (o.bounce > 0) {
-        BouncePasses bounce(ctx, log);
+        BouncePasses bounce(ctx, shaderAlbedo(ctx, log), log);
         for (int b = 1; b <= o.bounce; ++b) {
             if (!o.noBounceStore) {
                 // q3map2 stores the BSP between bounces, so that a long radiosity run can be looked at

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "light_context.h"
 #include "light_text.h"
@@ -34,12 +35,14 @@ Vec3 traceVertex(const LightContext& ctx, const LightingEnv& env, Vec3 xyz, Vec3
         p.cluster = cluster;
     }
     Vec3 color = ctx.world.ambient;
-    for (const Light& light : ctx.lights) {
-        const bool open = forceSunlight && light.type == LightType::Sun;
-        std::optional<LightContribution> c = lightToSample(light, p, open ? unoccluded : env);
-        if (c && c->style == 0) color += c->color;
-        if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) break;
-    }
+    // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each bounce).
+    for (std::span<const Light> lights : {std::span<const Light>(ctx.lights), std::span<const Light>(ctx.bounceLights)})
+        for (const Light& light : lights) {
+            const bool open = forceSunlight && light.type == LightType::Sun;
+            std::optional<LightContribution> c = lightToSample(light, p, open ? unoccluded : env);
+            if (c && c->style == 0) color += c->color;
+            if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) return color;
+        }
     return color;
 }
 

@@ -9,6 +9,7 @@
 
 #include "light_context.h"
 #include "phong.h"
+#include "phong_reference.h"
 #include "test_data.h"
 
 namespace q3::light {
@@ -64,27 +65,7 @@ std::vector<Vec3> sweepReference(const LightContext& ctx) {
         for (size_t k = rank[i]; k-- > 0 && p[i].x - p[order[k]].x < 0.01f;) near.push_back(order[k]);
         for (size_t k = rank[i]; k < order.size() && p[order[k]].x - p[i].x < 0.01f; ++k) near.push_back(order[k]);
         std::sort(near.begin(), near.end());
-        std::vector<size_t> members;
-        std::vector<Vec3> votes;
-        Vec3 sum{};
-        for (size_t j : near) {
-            if (j < i || done[j] || members.size() >= 256 || radians[j] <= 0) continue;
-            const Vec3 d = p[i] - p[j];
-            if (!(std::fabs(d.x) < 0.001f && std::fabs(d.y) < 0.001f && std::fabs(d.z) < 0.001f)) continue;
-            const double c = std::clamp(double(n[i].x) * n[j].x + double(n[i].y) * n[j].y + double(n[i].z) * n[j].z, -1.0, 1.0);
-            if (std::acos(c) + 0.000001 >= std::min(radians[i], radians[j])) continue;
-            members.push_back(j);
-            done[j] = true;
-            const bool voted = std::any_of(votes.begin(), votes.end(), [&](Vec3 w) {
-                return std::fabs(w.x - n[j].x) < 0.01f && std::fabs(w.y - n[j].y) < 0.01f && std::fabs(w.z - n[j].z) < 0.01f;
-            });
-            if (!voted) {
-                votes.push_back(n[j]);
-                sum += n[j];
-            }
-        }
-        if (members.size() < 2 || normalize(sum) == Vec3{}) continue;
-        for (size_t j : members) out[j] = normalize(sum);
+        referenceSmoothGroup(i, near, p, n, radians, done, out);
     }
     return out;
 }

@@ -11,6 +11,7 @@
 #include "light_context.h"
 #include "lightmap_layout.h"
 #include "phong.h"
+#include "phong_reference.h"
 #include "shader_info.h"
 
 namespace q3::light {
@@ -206,35 +207,18 @@ TEST(Phong, PositionsFartherThanTheEpsilonStayApart) {
 }
 
 // q3map2's loop, quadratic, as the reference the hashed version must equal exactly.
+// Every vertex against every later one (quadratic).
 std::vector<Vec3> bruteForce(const std::vector<Vec3>& p, const std::vector<Vec3>& n, const std::vector<float>& deg) {
+    std::vector<float> radians(p.size());
+    for (size_t i = 0; i < p.size(); ++i) radians[i] = deg[i] > 0 ? degToRad(deg[i]) : 0.0f;
     std::vector<Vec3> out = n;
-    std::vector<bool> done(p.size(), false);
+    std::vector<bool> grouped(p.size(), false);
+    std::vector<size_t> later;
     for (size_t i = 0; i < p.size(); ++i) {
-        if (done[i]) continue;
-        std::vector<size_t> members;
-        std::vector<Vec3> votes;
-        Vec3 sum{};
-        for (size_t j = i; j < p.size() && members.size() < 256; ++j) {
-            if (done[j]) continue;
-            const Vec3 d = p[i] - p[j];
-            if (!(std::fabs(d.x) < 0.001f && std::fabs(d.y) < 0.001f && std::fabs(d.z) < 0.001f)) continue;
-            const float a = std::min(deg[i] > 0 ? degToRad(deg[i]) : 0.0f, deg[j] > 0 ? degToRad(deg[j]) : 0.0f);
-            const double dotv = std::clamp(double(n[i].x) * n[j].x + double(n[i].y) * n[j].y + double(n[i].z) * n[j].z,
-                                           -1.0, 1.0);
-            if (std::acos(dotv) + 0.000001 >= a) continue;
-            members.push_back(j);
-            done[j] = true;
-            bool voted = false;
-            for (const Vec3& v : votes)
-                voted = voted || (std::fabs(v.x - n[j].x) < 0.01f && std::fabs(v.y - n[j].y) < 0.01f &&
-                                  std::fabs(v.z - n[j].z) < 0.01f);
-            if (!voted) {
-                votes.push_back(n[j]);
-                sum += n[j];
-            }
-        }
-        if (members.size() < 2 || normalize(sum) == Vec3{}) continue;
-        for (size_t j : members) out[j] = normalize(sum);
+        if (grouped[i] || radians[i] <= 0) continue;
+        later.clear();
+        for (size_t j = i; j < p.size(); ++j) later.push_back(j);
+        referenceSmoothGroup(i, later, p, n, radians, grouped, out);
     }
     return out;
 }
@@ -303,8 +287,11 @@ TEST(Phong, LightmapLayoutInterpolatesTheGivenNormals) {
     EXPECT_LT(farEdge, 0.1f);
     const std::optional<RawLightmap> flat = layoutSurfaceLightmap(stored, SurfaceLightmapParams{}, LayoutOptions{});
     ASSERT_TRUE(flat);
-    for (const Luxel& lx : flat->luxels)
-        if (lx.mapped) EXPECT_EQ(lx.normal, Vec3(0, 0, 1));
+    for (const Luxel& lx : flat->luxels) {
+        if (lx.mapped) {
+            EXPECT_EQ(lx.normal, Vec3(0, 0, 1));
+        }
+    }
 }
 
 TEST(PhongAngles, EntityKeysAndAliases) {
