@@ -13,77 +13,41 @@
 #include "light_contribution.h"
 #include "light_text.h"
 #include "progress.h"
+#include "sh_polygon.h"
 
 namespace q3::light {
 namespace {
 
-constexpr int kMaxAreaSubdivisions = 8;    // pieces per triangle edge for emitters close to a point
-constexpr float kPiecesPerRadius = 4.0f;   // pieces per edge ~ this * emitter radius / distance
 // Emitters adding less than this (legacy units, 255 = white) are one directional sample: spreading
 // so little light over its true directions changes no probe by more than a fraction of a unit.
-constexpr float kMinPiecedLight = 2.0f;
+constexpr float kMinSpreadLight = 2.0f;
+// Emitters farther than this many times their radius are one directional sample: the L2 projection
+// of the whole emitter then differs from it by under 2 % of its peak.
+constexpr float kOneSampleDistance = 4.0f;
 constexpr float kAreaPushDistance = 8.0f;  // points this close to an emitter plane are pushed off it
 constexpr int kBlockEdge = 4;              // grid points per block edge (lights culled per block)
 
 sh::Vec3d toSh(Vec3 v) { return {v.x, v.y, v.z}; }
 sh::Rgb toRgb(Vec3 v, double scale) { return {v.x * scale, v.y * scale, v.z * scale}; }
 
-struct Vec3dMath {
-    double x, y, z;
-};
-double dot3(Vec3dMath a, Vec3dMath b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double len3(Vec3dMath a) { return std::sqrt(dot3(a, a)); }
-Vec3dMath sub3(Vec3 a, Vec3 b) { return {double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; }
-
-// Solid angle of the triangle (a, b, c) seen from the origin (Van Oosterom and Strackee 1983).
-double triangleSolidAngle(Vec3dMath a, Vec3dMath b, Vec3dMath c) {
-    const Vec3dMath bc{b.y * c.z - b.z * c.y, b.z * c.x - b.x * c.z, b.x * c.y - b.y * c.x};
-    const double numerator = std::abs(dot3(a, bc));
-    const double la = len3(a), lb = len3(b), lc = len3(c);
-    const double denominator = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
-    return 2.0 * std::atan2(numerator, denominator);
-}
-
-int chooseAreaSubdivisions(const Light& light, Vec3 pushed) {
+bool closeToEmitter(const Light& light, Vec3 pushed) {
     float radius = 0;
     for (const Vec3& w : light.winding) radius = std::max(radius, distance(w, light.origin));
-    const float d = distance(pushed, light.origin);
-    if (d <= 0) return kMaxAreaSubdivisions;
-    return std::clamp(static_cast<int>(std::ceil(kPiecesPerRadius * radius / d)), 1, kMaxAreaSubdivisions);
+    return distance(pushed, light.origin) < kOneSampleDistance * radius;
 }
 
 // A Lambertian emitter of the q3map2 model sends light.add / pi (legacy units) per steradian: the
-// legacy form factor is the projected solid angle / pi times light.add. Each piece adds its solid
-// angle times that radiance as a directional sample. The emitter is shadowed as a whole by the
-// legacy grid's ray (`transmission`): the pieces spread its light over the directions it covers,
-// at no extra rays, and the SH grid sees exactly the occlusion the legacy grid sees.
-void addAreaPieces(sh::SH9Color& acc, const Light& light, Vec3 pushed, int pieces, Vec3 transmission) {
-    const double radiance = double(light.add) / sh::kPi;
-    const size_t n = light.winding.size();
-    const float step = 1.0f / float(pieces);
-    auto at = [&](Vec3 p0, Vec3 e1, Vec3 e2, int i, int j) {
-        return p0 + e1 * (float(i) * step) + e2 * (float(j) * step);
-    };
-    auto addPiece = [&](Vec3 a, Vec3 b, Vec3 c) {
-        const double omega = triangleSolidAngle(sub3(a, pushed), sub3(b, pushed), sub3(c, pushed));
-        if (!(omega > 0)) return;
-        const Vec3 centroid = (a + b + c) / 3.0f;
-        const Vec3 dir = normalize(centroid - pushed);
-        if (dir == Vec3{}) return;
-        const double scale = radiance * omega / 255.0;
-        sh::addDirectionalIrradiance(acc, toSh(dir), toRgb(light.color * transmission, scale));
-    };
-    for (size_t t = 1; t + 1 < n; ++t) {
-        const Vec3 p0 = light.winding[0];
-        const Vec3 e1 = light.winding[t] - p0;
-        const Vec3 e2 = light.winding[t + 1] - p0;
-        for (int i = 0; i < pieces; ++i)
-            for (int j = 0; i + j < pieces; ++j) {
-                addPiece(at(p0, e1, e2, i, j), at(p0, e1, e2, i + 1, j), at(p0, e1, e2, i, j + 1));
-                if (i + j + 1 < pieces)
-                    addPiece(at(p0, e1, e2, i + 1, j), at(p0, e1, e2, i + 1, j + 1), at(p0, e1, e2, i, j + 1));
-            }
-    }
+// legacy form factor is the projected solid angle / pi times light.add. The SH grid integrates that
+// radiance over the directions the emitter covers (sh_polygon.h). The emitter is shadowed as a
+// whole by the legacy grid's ray (`transmission`), so the SH grid sees exactly the occlusion the
+// legacy grid sees.
+void addAreaEmitter(sh::SH9Color& acc, const Light& light, Vec3 pushed, Vec3 transmission) {
+    thread_local std::vector<sh::Vec3d> corners;
+    corners.clear();
+    for (const Vec3& w : light.winding) corners.push_back(toSh(w - pushed));
+    const double radiance = double(light.add) / sh::kPi / 255.0;
+    sh::addUniformPolygonIrradiance(acc, sh::sphericalPolygonMoments(corners),
+                                    toRgb(light.color * transmission, radiance));
 }
 
 bool isBlack(const sh::GridPointSH& p) {
@@ -92,10 +56,33 @@ bool isBlack(const sh::GridPointSH& p) {
     return true;
 }
 
+// Projects a contribution of `light` whose shadow ray let `transmission` through (c.color already
+// multiplied by it).
+void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
+                         Vec3 transmission, const ContributionSettings& settings, bool areaAsOneSample) {
+    const sh::Rgb color = toRgb(c.color, 1.0 / 255.0);
+    if (light.controlled && light.type != LightType::Sun) {
+        sh::addControlledIncidence(acc, toSh(c.direction), color, light.controlled->dotProductWeight);
+        return;
+    }
+    if (light.type == LightType::Area && !settings.faster && !areaAsOneSample && light.winding.size() >= 3) {
+        const float d = dot(origin, light.normal) - light.planeDist;
+        const bool nearPlane = d > -kAreaPushDistance && d < kAreaPushDistance;
+        const Vec3 pushed = nearPlane ? origin + light.normal * (kAreaPushDistance - d) : origin;
+        if (maxComponent(c.color) >= kMinSpreadLight && closeToEmitter(light, pushed)) {
+            addAreaEmitter(acc, light, pushed, transmission);
+            return;
+        }
+    }
+    // Points, spots, suns (each jittered sun sample and each sky-dome sun is its own light), far
+    // area lights: one directional sample, as the legacy grid sees it.
+    sh::addDirectionalIrradiance(acc, toSh(c.direction), color);
+}
+
 }  // namespace
 
 std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,
-                                                       int cluster, const LightingEnv& env, int areaSubdivisions) {
+                                                       int cluster, const LightingEnv& env, bool areaAsOneSample) {
     // The legacy contribution, unoccluded, with its shadow ray set aside; traced once below.
     thread_local std::vector<ShadowRay> ray;  // at most one ray; kept to avoid an allocation per call
     ray.clear();
@@ -107,26 +94,41 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
     if (!ray.empty()) env.scene->traceBatch(ray, std::span<Vec3>(&transmission, 1));
     if (transmission == Vec3{}) return std::nullopt;
     c->color *= transmission;
-    const sh::Rgb color = toRgb(c->color, 1.0 / 255.0);
-    if (light.controlled && light.type != LightType::Sun) {
-        sh::addControlledIncidence(acc, toSh(c->direction), color, light.controlled->dotProductWeight);
-        return c;
-    }
-    if (light.type == LightType::Area && !env.settings.faster && light.winding.size() >= 3) {
-        const float d = dot(origin, light.normal) - light.planeDist;
-        const bool nearPlane = d > -kAreaPushDistance && d < kAreaPushDistance;
-        const Vec3 pushed = nearPlane ? origin + light.normal * (kAreaPushDistance - d) : origin;
-        const bool faint = maxComponent(c->color) < kMinPiecedLight;
-        const int pieces = areaSubdivisions > 0 ? areaSubdivisions : faint ? 1 : chooseAreaSubdivisions(light, pushed);
-        if (pieces > 1) {
-            addAreaPieces(acc, light, pushed, pieces, transmission);
-            return c;
-        }
-    }
-    // Points, spots, suns (each jittered sun sample and each sky-dome sun is its own light), far
-    // area lights: one directional sample, as the legacy grid sees it.
-    sh::addDirectionalIrradiance(acc, toSh(c->direction), color);
+    projectContribution(acc, light, origin, *c, transmission, env.settings, areaAsOneSample);
     return c;
+}
+
+void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, std::span<const uint32_t> candidates,
+                            Vec3 origin, int cluster, const LightingEnv& env) {
+    struct Pending {
+        uint32_t light;
+        LightContribution contribution;
+        int ray;  // index into rays, -1 = unoccluded
+    };
+    thread_local std::vector<ShadowRay> rays;
+    thread_local std::vector<Pending> pending;
+    thread_local std::vector<Vec3> transmissions;
+    rays.clear();
+    pending.clear();
+    LightingEnv deferred = env;
+    deferred.deferredRays = env.scene ? &rays : nullptr;
+    for (uint32_t lightIndex : candidates) {
+        const Light& light = lights[lightIndex];
+        if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
+        const size_t before = rays.size();
+        std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, deferred);
+        if (c) pending.push_back({lightIndex, *c, rays.size() > before ? int(before) : -1});
+    }
+    transmissions.assign(rays.size(), Vec3{1, 1, 1});
+    // One stream per probe, flagged incoherent: the rays spread from the probe towards every light
+    // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
+    if (env.scene && !rays.empty()) env.scene->traceBatch(rays, transmissions, false);
+    for (Pending& p : pending) {
+        const Vec3 transmission = p.ray >= 0 ? transmissions[size_t(p.ray)] : Vec3{1, 1, 1};
+        if (transmission == Vec3{}) continue;
+        p.contribution.color *= transmission;
+        projectContribution(acc, lights[p.light], origin, p.contribution, transmission, env.settings, false);
+    }
 }
 
 void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {
@@ -234,14 +236,19 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
         const int cluster = placed->cluster;
         origins[i] = origin;
         sh::SH9Color acc;
-        Vec3 total = ctx.world.ambient;
-        for (uint32_t lightIndex : candidates) {
-            const Light& light = ctx.lights[lightIndex];
-            if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
-            std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
-            if (!c) continue;
-            total += c->color;
-            if (ctx.options.cheapGrid && total.x >= 255 && total.y >= 255 && total.z >= 255) break;
+        if (ctx.options.cheapGrid) {
+            // -cheapgrid stops once the point is white, so each light's ray is traced before the next.
+            Vec3 total = ctx.world.ambient;
+            for (uint32_t lightIndex : candidates) {
+                const Light& light = ctx.lights[lightIndex];
+                if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
+                std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
+                if (!c) continue;
+                total += c->color;
+                if (total.x >= 255 && total.y >= 255 && total.z >= 255) break;
+            }
+        } else {
+            addLightsToGridPointSH(acc, ctx.lights, candidates, origin, cluster, env);
         }
         applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
         grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));

@@ -1,7 +1,7 @@
 // The SH light grid of `-light -sh` (specs/sh-grid.md): its layout (cell size from -gridsh, or the
 // worldspawn "gridsize" divided by -gridscalesh; bounds of model 0; growth past the 1 GiB lump
 // limit), its trace (every light the legacy grid sees, projected as L2 irradiance from its true
-// directions; area lights sampled over their surface; ambient and minlight floors on the uniform
+// directions; close area lights integrated over their surface; ambient and minlight floors on the uniform
 // band; points in solid nudged out or filled from their neighbours) and how it is stored in a BSP
 // (lump 18 of version 47, or the BSPX lump LIGHTGRID_SH of version 46).
 #pragma once
@@ -76,11 +76,17 @@ struct ShTraceStats {
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
 // before -gridscale). Returns the legacy grid's contribution of the light (nullopt when it does not
-// reach the point, and then nothing is added). Area lights close to the point are cut into pieces
-// (`areaSubdivisions` per triangle edge, 0 = chosen from the distance, 1 = one directional sample),
-// each projected from its own direction with its own solid angle and shadow ray.
+// reach the point, and then nothing is added). Area lights close to the point (within 4 times their
+// radius) are integrated exactly over the directions they cover, unless `areaAsOneSample`; far or
+// faint ones are one directional sample.
 std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,
-                                                       int cluster, const LightingEnv& env, int areaSubdivisions = 0);
+                                                       int cluster, const LightingEnv& env,
+                                                       bool areaAsOneSample = false);
+
+// The same for every style-0 light of `candidates` (indices into `lights`, in order), their shadow
+// rays traced as one batch.
+void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, std::span<const uint32_t> candidates,
+                            Vec3 origin, int cluster, const LightingEnv& env);
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
 // adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform

@@ -283,7 +283,11 @@ Vec3 TraceScene::skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float 
 
 void TraceScene::countRays(size_t n) const {
     const int slot = tbb::this_task_arena::current_thread_index();  // -1 outside any arena
-    rays_[static_cast<size_t>(slot < 0 ? 0 : slot) % kRayCounters].rays.fetch_add(n, std::memory_order_relaxed);
+    // One writer per slot at a time (a worker thread, or the calling thread outside the arenas,
+    // which runs as slot 0 inside them): a plain load and store, without the locked add that made
+    // counting cost as much as a short ray.
+    std::atomic<uint64_t>& counter = rays_[static_cast<size_t>(slot < 0 ? 0 : slot) % kRayCounters].rays;
+    counter.store(counter.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
 }
 
 // The single-ray form of traceBatch, without any allocation.
@@ -318,7 +322,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
 
-void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out) const {
+void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const {
     const size_t n = std::min(rays.size(), out.size());
     if (n == 0) return;
     if (n == 1) {
@@ -329,17 +333,17 @@ void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out
     // Chunks small enough for the ray arrays to stay in cache and on the stack.
     for (size_t first = 0; first < n; first += kBatchChunk) {
         const size_t count = std::min(kBatchChunk, n - first);
-        traceChunk(rays.subspan(first, count), out.subspan(first, count));
+        traceChunk(rays.subspan(first, count), out.subspan(first, count), coherent);
     }
 }
 
-void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out) const {
+void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const {
     const size_t n = rays.size();
     // Rays of one batch usually share a direction (one sun, many luxels) or an origin: Embree
     // groups them into packets when told they are coherent.
     RTCIntersectContext plain;
     rtcInitIntersectContext(&plain);
-    plain.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    plain.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     for (size_t i = 0; i < n; ++i) out[i] = Vec3{};
 
     // 1. Sun rays: the nearest sky surface must belong to the sun's sky; it bounds the ray.

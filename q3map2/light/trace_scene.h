@@ -88,8 +88,9 @@ public:
     // The ray skyTransmission() traces.
     static ShadowRay skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0);
     // Transmission of many rays at once (out[i] for rays[i]), exactly as one call per ray would give,
-    // traced as Embree ray streams: cheaper per ray when the rays are coherent.
-    void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
+    // traced as Embree ray streams: cheaper per ray when the rays are coherent (one sun over many
+    // luxels). `coherent` false: rays that spread from one point to many lights.
+    void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent = true) const;
 
     // Casters of the same group magnitude share one bit of the Embree geometry mask (bit 0 for
     // group 1); beyond 31 other groups, the last bit is shared.
@@ -112,7 +113,7 @@ private:
 
     static constexpr size_t kBatchChunk = 64;
     Vec3 traceOne(const ShadowRay& ray) const;
-    void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out) const;
+    void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const;
     void countRays(size_t n) const;
 
     struct EmbreeState;

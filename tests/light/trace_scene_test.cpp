@@ -223,8 +223,9 @@ TEST(TraceScene, BatchMatchesSingleRays) {
             rays.push_back(TraceScene::skyRay(from, Vec3{0.1f * static_cast<float>(i % 5), 0, 1}, i % 7 == 0 ? 1 : 0));
         }
     }
-    std::vector<Vec3> batch(rays.size());
+    std::vector<Vec3> batch(rays.size()), incoherent(rays.size());
     scene.traceBatch(rays, batch);
+    scene.traceBatch(rays, incoherent, false);  // the stream hint changes the speed only
     int lit = 0, tinted = 0, blocked = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
         const ShadowRay& r = rays[i];
@@ -232,6 +233,8 @@ TEST(TraceScene, BatchMatchesSingleRays) {
                                     : scene.transmission(r.from, r.from + r.direction * (r.tfar + 0.01f));
         EXPECT_NEAR(batch[i].x, single.x, 1e-6f) << "ray " << i;
         EXPECT_NEAR(batch[i].y, single.y, 1e-6f) << "ray " << i;
+        EXPECT_NEAR(incoherent[i].x, single.x, 1e-6f) << "ray " << i;
+        EXPECT_NEAR(incoherent[i].y, single.y, 1e-6f) << "ray " << i;
         lit += batch[i] == Vec3{1, 1, 1};
         tinted += batch[i].x > 0 && batch[i].x < 1;
         blocked += batch[i] == Vec3{};
