@@ -34,7 +34,6 @@ inline void appendU32(std::vector<uint8_t>& out, uint32_t v) {
     std::memcpy(b, &v, sizeof v);
     out.insert(out.end(), b, b + 4);
 }
-inline void padTo4(std::vector<uint8_t>& out) { out.resize(alignUp4(out.size()), 0); }
 
 // Copies a byte range into a vector of records; the caller has checked the length.
 template <typename T>
@@ -43,12 +42,6 @@ std::vector<T> recordsFrom(const uint8_t* data, size_t bytes) {
     if (!out.empty()) std::memcpy(out.data(), data, out.size() * sizeof(T));
     return out;
 }
-template <typename T>
-std::vector<uint8_t> bytesOf(const std::vector<T>& records) {
-    const auto* p = reinterpret_cast<const uint8_t*>(records.data());
-    return std::vector<uint8_t>(p, p + records.size() * sizeof(T));
-}
-
 template <typename T>
 std::span<const uint8_t> bytesView(const std::vector<T>& records) {
     return {reinterpret_cast<const uint8_t*>(records.data()), records.size() * sizeof(T)};

@@ -32,8 +32,8 @@ double signedTriangleSolidAngle(Vec3d a, Vec3d b, Vec3d c) {
 
 PolygonMoments sphericalPolygonMoments(std::span<const Vec3d> corners) {
     PolygonMoments m;
-    std::vector<Vec3d> v;
-    v.reserve(corners.size());
+    thread_local std::vector<Vec3d> v;  // called per light and probe: no allocation once warm
+    v.clear();
     for (const Vec3d& c : corners) {
         const Vec3d unit = normalized(c);
         if (dot(unit, unit) > 0) v.push_back(unit);

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -106,6 +108,27 @@ RunResult runLight(const fs::path& gameDir, const std::string& name, const std::
     command += " && ";
     command += commandLine(words);
     return run(command);
+}
+
+fs::path relightOacmpMap(const fs::path& root, const std::string& name, const std::vector<std::string>& options,
+                         std::string* output) {
+    const fs::path gameDir = stageOacmpMap(root, name);
+    RunResult r = runLight(gameDir, name, options);
+    if (r.status != 0) {
+        ADD_FAILURE() << r.command << " exited with " << r.status << "\n" << r.output;
+        throw std::runtime_error("q3map2 -light failed");
+    }
+    if (output) *output = std::move(r.output);
+    return gameDir / "maps" / (name + ".bsp");
+}
+
+RunResult expectLoads(const fs::path& bsp, const std::string& engines, const fs::path& logDir) {
+    RunResult load = runLoadCheck(bsp, engines, logDir);
+    std::cout << load.output;
+    EXPECT_EQ(load.status, 0) << load.command;
+    const size_t engineCount = size_t(std::count(engines.begin(), engines.end(), ',')) + 1;
+    EXPECT_EQ(linesWith(load.output, " OK ").size(), engineCount) << "every engine ran: " << engines;
+    return load;
 }
 
 RunResult runLoadCheck(const fs::path& bsp, const std::string& engines, const fs::path& logDir) {

@@ -38,6 +38,10 @@ std::filesystem::path stageOacmpMap(const std::filesystem::path& root, const std
 // in gameDir. `options` is a list of words, e.g. {"-fast", "-sh"}.
 RunResult runLight(const std::filesystem::path& gameDir, const std::string& name,
                    const std::vector<std::string>& options);
+// stageOacmpMap into `root`, then runLight; returns the lit maps/NAME.bsp. A failed run adds a test
+// failure and throws. `output` (optional) receives the compiler's output.
+std::filesystem::path relightOacmpMap(const std::filesystem::path& root, const std::string& name,
+                                      const std::vector<std::string>& options, std::string* output = nullptr);
 
 // q3-load-check -s (strict: engine warnings about the BSP fail) on `bsp` for the given engines
 // ("ioq3,dp"), with the engine logs copied to logDir. Both engine scripts are run again (up to six
@@ -46,6 +50,10 @@ RunResult runLight(const std::filesystem::path& gameDir, const std::string& name
 RunResult runLoadCheck(const std::filesystem::path& bsp, const std::string& engines,
                        const std::filesystem::path& logDir);
 
+// runLoadCheck, its output printed, expecting exit 0 and one " OK " line per engine of `engines`.
+RunResult expectLoads(const std::filesystem::path& bsp, const std::string& engines,
+                      const std::filesystem::path& logDir);
+
 // q3-screenshot -s with the given engines and modes ("lightmap,normal"); the PNGs are named by
 // screenshotPath(prefix, engine, mode).
 RunResult runScreenshot(const std::filesystem::path& bsp, const std::string& engines, const std::string& modes,
@@ -53,12 +61,12 @@ RunResult runScreenshot(const std::filesystem::path& bsp, const std::string& eng
 std::filesystem::path screenshotPath(const std::filesystem::path& prefix, const std::string& engine,
                                      const std::string& mode);
 
-// The lines of `text` that contain `needle`.
 // Copies `bsp` into `engineDir` (created) as <name>.bsp: the engines see it under a name no package
 // ships. Returns the copy's path.
 std::filesystem::path copyForEngines(const std::filesystem::path& bsp, const std::filesystem::path& engineDir,
                                      const std::string& name);
 
+// The lines of `text` that contain `needle`.
 std::vector<std::string> linesWith(const std::string& text, const std::string& needle);
 
 // DarkPlaces' light-grid samples the scripts print (getlight() x 128, e.g. "lightgrid at

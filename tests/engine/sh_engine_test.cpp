@@ -21,17 +21,6 @@ namespace fs = std::filesystem;
 // The cheapest oacmp map with -fast (about 1 CPU second, plus the SH grid).
 const std::string kMap = "oacmpdm5";
 
-// Relights a fresh copy of the shipped map in <dir>/<tag> and returns the lit BSP's path.
-fs::path relight(const fs::path& dir, const std::string& tag, const std::vector<std::string>& options) {
-    const fs::path gameDir = stageOacmpMap(dir / tag, kMap);
-    const RunResult r = runLight(gameDir, kMap, options);
-    if (r.status != 0) {
-        ADD_FAILURE() << r.command << " exited with " << r.status << "\n" << r.output;
-        throw std::runtime_error("q3map2 -light failed");
-    }
-    return gameDir / "maps" / (kMap + ".bsp");
-}
-
 // The entities with the recorded command line blanked, as text.
 std::string entitiesWithoutCommandLine(const bsp::Bsp& map, const std::string& name) {
     std::vector<bsp::Entity> entities = bsp::parseEntities(map.entities, name);
@@ -54,9 +43,9 @@ void expectSameLegacyLumps(const bsp::Bsp& plain, const bsp::Bsp& other, const s
 
 TEST(ShGridInEngines, ShAndBspxOutputsLoadAndKeepLegacyLumps) {
     const fs::path dir = test::tempDir();
-    const bsp::Bsp plain = bsp::readBsp(relight(dir, "plain", {"-fast"}));
-    const fs::path shPath = relight(dir, "sh", {"-fast", "-sh"});
-    const fs::path bspxPath = relight(dir, "bspx", {"-fast", "-shbspx"});
+    const bsp::Bsp plain = bsp::readBsp(relightOacmpMap(dir / "plain", kMap, {"-fast"}));
+    const fs::path shPath = relightOacmpMap(dir / "sh", kMap, {"-fast", "-sh"});
+    const fs::path bspxPath = relightOacmpMap(dir / "bspx", kMap, {"-fast", "-shbspx"});
     const bsp::Bsp sh = bsp::readBsp(shPath);
     const bsp::Bsp bspx = bsp::readBsp(bspxPath);
 
@@ -78,13 +67,8 @@ TEST(ShGridInEngines, ShAndBspxOutputsLoadAndKeepLegacyLumps) {
     const fs::path shCopy = copyForEngines(shPath, engineDir, kMap + "_sh");
     const fs::path bspxCopy = copyForEngines(bspxPath, engineDir, kMap + "_shbspx");
     // ioquake3 refuses version 47 by design, so the v47 file goes to DarkPlaces only.
-    const RunResult shLoad = runLoadCheck(shCopy, "dp", engineDir / "logs");
-    std::cout << shLoad.output;
-    EXPECT_EQ(shLoad.status, 0) << shLoad.command;
-    const RunResult bspxLoad = runLoadCheck(bspxCopy, "ioq3,dp", engineDir / "logs");
-    std::cout << bspxLoad.output;
-    EXPECT_EQ(bspxLoad.status, 0) << bspxLoad.command;
-    EXPECT_EQ(linesWith(bspxLoad.output, " OK ").size(), 2u) << "both engines ran";
+    expectLoads(shCopy, "dp", engineDir / "logs");
+    expectLoads(bspxCopy, "ioq3,dp", engineDir / "logs");
 }
 
 // DarkPlaces' getlight() at the player model, summed over the channels; -1 when not reported.
@@ -95,7 +79,7 @@ double modelGridLight(const std::string& output) {
 
 TEST(ShGridInEngines, GridModelIsLitInDarkPlaces) {
     const fs::path dir = test::tempDir();
-    const fs::path shPath = relight(dir, "sh", {"-fast", "-sh"});
+    const fs::path shPath = relightOacmpMap(dir / "sh", kMap, {"-fast", "-sh"});
     const fs::path engineDir = dir / "engine";
     fs::create_directories(engineDir);
     const fs::path litCopy = engineDir / (kMap + "_sh.bsp");
