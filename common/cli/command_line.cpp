@@ -26,6 +26,21 @@ std::vector<std::string> stageNames(std::span<const StageDescription> stages) {
     return names;
 }
 
+// Common options q3map2 takes from anywhere on the command line (its main and path set-up search the
+// whole argument list), with the number of values each takes: a stage's options may be followed by
+// "-threads 2" as with q3map2 itself.
+int anywhereOptionValues(const std::string& token) {
+    static const std::pair<const char*, int> kOptions[] = {
+        {"-threads", 1},      {"-force", 0},       {"-subdivisions", 1}, {"-game", 1},
+        {"-fs_basepath", 1},  {"-fs_game", 1},     {"-fs_basegame", 1},  {"-fs_homepath", 1},
+        {"-fs_home", 1},      {"-fs_homebase", 1}, {"-fs_pakpath", 1},   {"-fs_forbiddenpath", 1},
+    };
+    const std::string t = lowered(token);
+    for (const auto& [name, values] : kOptions)
+        if (t == name) return values;
+    return -1;
+}
+
 bool isHelpSwitch(const std::string& token) {
     std::string t = lowered(token);
     return t == "-help" || t == "--help" || t == "-h";
@@ -82,7 +97,17 @@ CommandLine splitCommandLine(std::span<const std::string> args, const OptionTabl
         throw UsageError(stage.name + " needs a map file as its last argument (" + stage.name + " [options] " +
                          stage.fileUsage + ")");
     line.mapArg = rest.back();
-    line.stageArgs.assign(rest.begin(), rest.end() - 1);
+    std::vector<std::string> moved;
+    for (size_t i = 0; i + 1 < rest.size(); ++i) {
+        const int values = anywhereOptionValues(rest[i]);
+        if (values < 0 || findOption(commonInfos, rest[i]) < 0) {
+            line.stageArgs.push_back(rest[i]);
+            continue;
+        }
+        moved.push_back(rest[i]);
+        for (int v = 0; v < values && i + 2 < rest.size(); ++v) moved.push_back(rest[++i]);
+    }
+    if (!moved.empty()) parseOptions(commonTable, moved, before, common);
 
     common.mapPath = bspPathFor(line.mapArg);
     common.commandLine = stage.name;

@@ -101,7 +101,8 @@ struct Fog {
     int32_t brushNum;
     int32_t visibleSide;
 };
-enum SurfaceType : int32_t { MST_BAD = 0, MST_PLANAR = 1, MST_PATCH = 2, MST_TRIANGLE_SOUP = 3, MST_FLARE = 4 };
+enum SurfaceType : int32_t { MST_BAD = 0, MST_PLANAR = 1, MST_PATCH = 2, MST_TRIANGLE_SOUP = 3, MST_FLARE = 4,
+                             MST_FOLIAGE = 5 };
 constexpr int32_t kLightmapByVertex = -3;  // lightmapNum of a vertex-lit surface
 constexpr int32_t kLightmapNone = -1;
 struct Surface {

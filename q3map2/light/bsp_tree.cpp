@@ -51,6 +51,43 @@ static double planeDistance(const bsp::Plane& plane, Vec3 p) {
            double(plane.dist);
 }
 
+bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
+    if (bsp_.nodes.empty()) return false;
+    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
+    struct Local {
+        const BspTree& tree;
+        bool crosses(int node, Vec3 start, Vec3 end, int depth) const {
+            const bsp::Bsp& bsp = tree.bsp_;
+            // Recursion only splits; the near side is walked first, the far side continues the loop.
+            while (true) {
+                if (node < 0) {
+                    const int leaf = -node - 1;
+                    return leaf < 0 || leaf >= int(bsp.leafs.size()) || bsp.leafs[size_t(leaf)].cluster == -1;
+                }
+                if (node >= int(bsp.nodes.size()) || depth > 4096) return false;  // hostile trees
+                const bsp::Node& n = bsp.nodes[size_t(node)];
+                if (n.planeNum < 0 || n.planeNum >= int(bsp.planes.size())) return false;
+                const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
+                const double front = planeDistance(plane, start), back = planeDistance(plane, end);
+                if (front >= -kOnEpsilon && back >= -kOnEpsilon) {
+                    node = n.children[0];
+                } else if (front < kOnEpsilon && back < kOnEpsilon) {
+                    node = n.children[1];
+                } else {
+                    const int side = front < 0 ? 1 : 0;
+                    const float frac = float(front / (front - back));
+                    const Vec3 mid = start + (end - start) * frac;
+                    if (crosses(n.children[side], start, mid, depth + 1)) return true;
+                    node = n.children[1 - side];
+                    start = mid;
+                }
+                ++depth;
+            }
+        }
+    };
+    return Local{*this}.crosses(0, from, to, 0);
+}
+
 int BspTree::leafForPoint(Vec3 point) const {
     if (bsp_.nodes.empty()) return bsp_.leafs.empty() ? -1 : 0;
     // A non-finite point compares as "on the plane" everywhere, which would walk both sides of
@@ -137,6 +174,27 @@ std::vector<Vec3> nudgeOffsets(float radius, float step) {
             }
     std::stable_sort(offsets.begin(), offsets.end(), [](Vec3 a, Vec3 b) {
         return std::make_tuple(dot(a, a), a.z, a.y, a.x) < std::make_tuple(dot(b, b), b.z, b.y, b.x);
+    });
+    return offsets;
+}
+
+std::vector<Vec3> nudgeOffsetsInBox(Vec3 halfExtent, int divisions) {
+    std::vector<Vec3> offsets;
+    const int n = std::max(1, divisions);
+    for (int z = -n; z <= n; ++z)
+        for (int y = -n; y <= n; ++y)
+            for (int x = -n; x <= n; ++x)
+                offsets.push_back(Vec3{halfExtent.x * float(x) / float(n), halfExtent.y * float(y) / float(n),
+                                       halfExtent.z * float(z) / float(n)});
+    // q3map2 widens its random box step by step, each axis in proportion to the cell: the search
+    // goes ring by ring in that box metric (largest per-axis fraction of the half extent), then by
+    // length within a ring.
+    auto ring = [halfExtent](Vec3 o) {
+        auto f = [](float v, float h) { return h > 0 ? std::fabs(v) / h : 0.0f; };
+        return std::max({f(o.x, halfExtent.x), f(o.y, halfExtent.y), f(o.z, halfExtent.z)});
+    };
+    std::stable_sort(offsets.begin(), offsets.end(), [&](Vec3 a, Vec3 b) {
+        return std::make_tuple(ring(a), dot(a, a), a.z, a.y, a.x) < std::make_tuple(ring(b), dot(b, b), b.z, b.y, b.x);
     });
     return offsets;
 }

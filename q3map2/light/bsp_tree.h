@@ -59,6 +59,11 @@ public:
     // PVS test; true when the visibility lump is absent (not vised), false for a negative cluster.
     bool clusterVisible(int from, int to) const;
 
+    // Whether the segment crosses a leaf outside every cluster (structural solid or the void), walked
+    // front to back through the node tree with q3map2's 0.1-unit on-plane epsilon (its TraceLine_r
+    // "passSolid"). Detail brushes, patches and models do not count. False without a node tree.
+    bool segmentCrossesSolid(Vec3 from, Vec3 to) const;
+
     bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
 
     // q3map2 ClusterForPointExt: the point's cluster, -1 outside the world, or -1 - brush when the
@@ -83,5 +88,9 @@ private:
 // The fixed offsets tried by nudgeOutOfSolid: every lattice point k*step (|k| <= radius/step per
 // axis) within `radius`, sorted by length, then z, y, x. Exposed for tests and other searches.
 std::vector<Vec3> nudgeOffsets(float radius, float step);
+// Lattice offsets `divisions` steps apart per axis inside the box |o[i]| <= halfExtent[i], nearest
+// first (ties by z, y, x): the region q3map2's random grid-point nudges cover (half a grid cell
+// each way), searched in a fixed order.
+std::vector<Vec3> nudgeOffsetsInBox(Vec3 halfExtent, int divisions);
 
 }  // namespace q3::light

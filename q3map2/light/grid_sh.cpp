@@ -8,6 +8,8 @@
 
 #include "grid_blocks.h"
 #include "grid_sh.h"
+
+#include "grid_encode.h"
 #include "grid_sh_gather.h"
 #include "light_context.h"
 #include "light_contribution.h"
@@ -212,7 +214,11 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     const size_t numPoints = static_cast<size_t>(layout.numPoints());
     grid.points.assign(numPoints, sh::GridPointSH{});
 
-    const LightingEnv env = gridLightingEnv(ctx);
+    // The same contributions as the legacy grid, inhibit radius included (its cells, not ours).
+    const std::string gridSizeValue = ctx.entities.empty() ? std::string() : ctx.entities[0].value("gridsize");
+    const Vec3 legacyCell =
+        computeGridLayout(parseGridSize(gridSizeValue, ctx.bspPath.string() + ": worldspawn \"gridsize\""), ctx.bsp).size;
+    const LightingEnv env = gridLightingEnv(ctx, legacyCell);
     const bool useTree = ctx.tree && ctx.tree->hasNodes();
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
     // Offsets half the radius apart (33 positions): a point deep in solid costs one tree walk per

@@ -44,10 +44,11 @@ void loadMapLights(LightContext& ctx, Log& log) {
     log.info(strCat(ctx.mapLights.size(), " light entities read from ", mapPath.string()));
 }
 
-// Where the command line is recorded (q3map2 InjectCommandLine): appended to earlier stages'.
+// Where the command line is recorded (q3map2 InjectCommandLine): the stage switch and its options,
+// appended to earlier stages' with "; " ("-bsp -meta; -vis -fast; -light -fast").
 void injectCommandLine(bsp::Entity& worldspawn, const std::string& commandLine) {
     std::string value = worldspawn.value("_q3map2_cmdline");
-    std::string line = "q3map2 " + commandLine;
+    const std::string& line = commandLine;
     value = value.empty() ? line : value + "; " + line;
     worldspawn.set("_q3map2_cmdline", value);
     worldspawn.set("_q3map2_version", kVersion);

@@ -111,7 +111,7 @@ void writeLitBsp(LightContext& ctx, Log& log);
 
 // Environment used to light luxels and vertices (scene, tree, settings).
 LightingEnv surfaceLightingEnv(const LightContext& ctx);
-LightingEnv gridLightingEnv(const LightContext& ctx);
+LightingEnv gridLightingEnv(const LightContext& ctx, Vec3 cellSize);
 // `env` for the luxels and vertices of one surface: its receive shadow group picks the casters.
 LightingEnv receiverLightingEnv(const LightContext& ctx, const LightingEnv& env, int surfaceNum);
 

@@ -55,6 +55,7 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
 
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
+    if (env.settings.solidLeavesBlock && env.tree && env.tree->segmentCrossesSolid(from, to)) return {};
     if (env.deferredRays) {
         if (std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear)) {
             ray->mask = env.rayMask;

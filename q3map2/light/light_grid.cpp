@@ -37,10 +37,12 @@ void lightGrid(LightContext& ctx, Log& log) {
 
     const int numPoints = layout.numPoints();
     const GridOptions gridOptions = gridOptionsFromContext(ctx);
-    const LightingEnv env = gridLightingEnv(ctx);
-    const float nudgeRadius = 0.5f * maxComponent(layout.size);
-    const float nudgeStep = std::max(1.0f, nudgeRadius / 4.0f);
-    const std::vector<Vec3> nudges = nudgeOffsets(nudgeRadius, nudgeStep);
+    const LightingEnv env = gridLightingEnv(ctx, layout.size);
+    // q3map2 moves a point in solid at random within half a cell along each axis; the same box is
+    // searched here in a fixed order.
+    const Vec3 nudgeBox = layout.size * 0.5f;
+    const float nudgeRadius = length(nudgeBox);
+    const std::vector<Vec3> nudges = nudgeOffsetsInBox(nudgeBox, 4);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
     log.info(strCat("light grid: ", layout.bounds[0], " x ", layout.bounds[1], " x ", layout.bounds[2], " = ",

@@ -44,12 +44,16 @@ SceneSurface planarGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 off
     return out;
 }
 
-SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset) {
+// `recordedCurve` is the longest curve -bsp wrote to the .srf for the surface's LOD group (0 when
+// unknown): q3map2 tessellates shadow facets and emitters with it, so grouped patches get the
+// iterations of the group's longest member, not their own.
+SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offset, float recordedCurve) {
     SceneSurface out;
     out.isPatch = true;
     patch::ControlGrid grid = patchControlGrid(bsp, s, offset);
     if (!patch::isValidGrid(grid)) return out;
-    patch::PatchMesh mesh = patch::tessellateForLighting(grid);
+    patch::PatchMesh mesh = recordedCurve > 0 ? patch::tessellateForLighting(grid, recordedCurve)
+                                              : patch::tessellateForLighting(grid);
     for (const patch::PatchVertex& v : mesh.verts) {
         out.xyz.push_back(v.xyz);
         out.st.push_back(v.st[0]);
@@ -144,7 +148,8 @@ void buildSurfaceGeometry(LightContext& ctx) {
         if (s.surfaceType == bsp::MST_PLANAR || s.surfaceType == bsp::MST_TRIANGLE_SOUP)
             geometry = planarGeometry(bsp, s, surfaceOffset[i]);
         else if (s.surfaceType == bsp::MST_PATCH)
-            geometry = patchGeometry(bsp, s, surfaceOffset[i]);
+            geometry = patchGeometry(bsp, s, surfaceOffset[i],
+                                     ctx.extras.loaded ? ctx.extras.forSurface(int(i)).longestCurve : 0.0f);
         geometry.surfaceNum = static_cast<int>(i);
         geometry.castShadows = surfaceFlags[i].cast;
         if (s.shaderNum >= 0 && static_cast<size_t>(s.shaderNum) < ctx.shaders.shaders.size())
@@ -215,10 +220,15 @@ int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights) {
             kept.push_back(std::move(light));
             continue;
         }
-        int cluster = ctx.tree->clusterForPointExt(light.origin, 0);
-        if (cluster < 0) {
-            if (std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(light.origin, 2.0f, 2.0f))
-                cluster = ctx.tree->clusterForPoint(*free);
+        // q3map2 SetupEnvelopes: LIGHT_EPSILON 0.125, then nudges of 0, +2, -2, +4 units per axis
+        // (x outermost); the first free position is kept and the light moves there.
+        constexpr float kLightEpsilon = 0.125f;
+        constexpr float kSteps[4] = {0.0f, 2.0f, -2.0f, 4.0f};
+        int cluster = ctx.tree->clusterForPointExt(light.origin, kLightEpsilon);
+        for (int i = 0; cluster < 0 && i < 64; ++i) {
+            const Vec3 nudged = light.origin + Vec3{kSteps[i / 16], kSteps[(i / 4) % 4], kSteps[i % 4]};
+            cluster = ctx.tree->clusterForPointExt(nudged, kLightEpsilon);
+            if (cluster >= 0) light.origin = nudged;
         }
         if (cluster < 0) {
             ++inSolid;
@@ -244,9 +254,13 @@ LightingEnv surfaceLightingEnv(const LightContext& ctx) {
     return env;
 }
 
-LightingEnv gridLightingEnv(const LightContext& ctx) {
+LightingEnv gridLightingEnv(const LightContext& ctx, Vec3 cellSize) {
     LightingEnv env = surfaceLightingEnv(ctx);
-    env.settings.ignoreNear = 0;  // every occluder counts for grid points
+    // q3map2 TraceGrid: occluders closer to the point than half the largest cell side are ignored
+    // (its inhibit radius), so that a point stands for its cell rather than its exact position;
+    // structural solid blocks whatever its distance.
+    env.settings.ignoreNear = 0.5f * maxComponent(cellSize);
+    env.settings.solidLeavesBlock = true;
     env.settings.forceFast = env.settings.forceFast || ctx.options.fastGrid;
     if (ctx.scene) env.rayMask = ctx.scene->receiverMask(1);  // grid points receive as the world does
     return env;

@@ -10,41 +10,68 @@
 
 #include "light_context.h"
 #include "light_text.h"
+#include "surface_lighting.h"
 
 namespace q3::light {
 namespace {
 
 constexpr float kVertexEpsilon = -0.125f;  // VERTEX_EPSILON of q3map2's point-in-solid test
-constexpr float kVertexNudge = 4.0f;       // how far a vertex sample may move out of solid
-constexpr float kVertexPushOff = 1.0f;     // sample just in front of the surface
+constexpr float kVertexNudge = 4.0f;       // VERTEX_NUDGE: the step of the search for a lit position
+// Steps of the search along each axis, in q3map2's order (its formula yields 0, 0, 1, -1, 2; the
+// repeated 0 would only retry the same point).
+constexpr int kNudgeSteps[4] = {0, 1, -1, 2};
 
-Vec3 traceVertex(const LightContext& ctx, const LightingEnv& env, Vec3 xyz, Vec3 normal, bool twoSided,
-                 bool forceSunlight) {
-    // q3map_forceSunlight: suns reach the vertex without occlusion.
-    LightingEnv unoccluded = env;
-    unoccluded.scene = nullptr;
-    SamplePoint p{xyz + normal * kVertexPushOff, normal, -1, twoSided};
-    if (ctx.tree && !ctx.bsp.nodes.empty()) {
-        int cluster = ctx.tree->clusterForPointExt(p.origin, kVertexEpsilon);
-        if (cluster < 0) {
-            if (std::optional<Vec3> free = ctx.tree->nudgeOutOfSolid(p.origin, kVertexNudge, 1.0f, kVertexEpsilon)) {
-                p.origin = *free;
-                cluster = ctx.tree->clusterForPoint(p.origin);
-            }
-        }
-        p.cluster = cluster;
+// Whether any channel is above the ambient light (q3map2 keeps searching until a vertex is).
+bool brighterThan(Vec3 c, Vec3 ambient) { return c.x > ambient.x || c.y > ambient.y || c.z > ambient.z; }
+
+struct VertexTracer {
+    const LightContext& ctx;
+    const LightingEnv& env;
+    std::span<const int> clusters;  // the surface's clusters: a sample point must see one of them
+    std::span<const Light* const> lights;  // the lights whose envelope reaches the surface's vertexes
+    bool twoSided = false;
+    bool forceSunlight = false;
+
+    int freeCluster(Vec3 point) const {
+        if (!ctx.tree || ctx.bsp.nodes.empty()) return 0;
+        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, kVertexEpsilon), clusters);
     }
-    Vec3 color = ctx.world.ambient;
-    // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each bounce).
-    for (std::span<const Light> lights : {std::span<const Light>(ctx.lights), std::span<const Light>(ctx.bounceLights)})
-        for (const Light& light : lights) {
-            const bool open = forceSunlight && light.type == LightType::Sun;
-            std::optional<LightContribution> c = lightToSample(light, p, open ? unoccluded : env);
+
+    Vec3 lightAt(Vec3 origin, Vec3 normal, int cluster) const {
+        // q3map_forceSunlight: suns reach the vertex without occlusion.
+        LightingEnv unoccluded = env;
+        unoccluded.scene = nullptr;
+        const SamplePoint p{origin, normal, ctx.tree && !ctx.bsp.nodes.empty() ? cluster : -1, twoSided};
+        Vec3 color = ctx.world.ambient;
+        for (const Light* light : lights) {
+            const bool open = forceSunlight && light->type == LightType::Sun;
+            std::optional<LightContribution> c = lightToSample(*light, p, open ? unoccluded : env);
             if (c && c->style == 0) color += c->color;
             if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) return color;
         }
-    return color;
-}
+        return color;
+    }
+
+    // q3map2 IlluminateVertexes: the light at the vertex itself; when that is out of the world or no
+    // brighter than the ambient light, the first position of a 4-unit lattice around it (x, then y,
+    // then z outermost first) that is lit, else the last one out of solid. nullopt: every position
+    // was in solid.
+    std::optional<Vec3> trace(Vec3 xyz, Vec3 normal) const {
+        std::optional<Vec3> color;
+        if (const int cluster = freeCluster(xyz); cluster >= 0) color = lightAt(xyz, normal, cluster);
+        if (color && brighterThan(*color, ctx.world.ambient)) return color;
+        for (int x : kNudgeSteps)
+            for (int y : kNudgeSteps)
+                for (int z : kNudgeSteps) {
+                    const Vec3 origin = xyz + Vec3{float(x), float(y), float(z)} * kVertexNudge;
+                    const int cluster = freeCluster(origin);
+                    if (cluster < 0) continue;
+                    color = lightAt(origin, normal, cluster);
+                    if (brighterThan(*color, ctx.world.ambient)) return color;
+                }
+        return color;
+    }
+};
 
 }  // namespace
 
@@ -74,16 +101,41 @@ void lightVertexes(LightContext& ctx, Log& log) {
             if (shader.noVertexLight) continue;
             const Vec3 offset = ctx.surfaceOffsets[i];
             const LightingEnv surfaceEnv = receiverLightingEnv(ctx, env, static_cast<int>(i));
+            const std::vector<int> clusters = surfaceClusters(bsp, static_cast<int>(i));
+            // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each
+            // bounce). Lights whose envelope misses every position the search may try are skipped.
+            Bounds reach;
+            for (int v = 0; v < s.numVerts; ++v)
+                reach.add(Vec3::fromArray(bsp.drawVerts[static_cast<size_t>(s.firstVert + v)].xyz) + offset);
+            reach.mins -= Vec3::splat(2 * kVertexNudge);
+            reach.maxs += Vec3::splat(2 * kVertexNudge);
+            std::vector<const Light*> reaching;
+            for (std::span<const Light> lights : {std::span<const Light>(ctx.lights), std::span<const Light>(ctx.bounceLights)})
+                for (const Light& light : lights)
+                    if (lightReachesBounds(light, reach, env.settings.forceFast)) reaching.push_back(&light);
+            const VertexTracer tracer{ctx, surfaceEnv, clusters, reaching, shader.twoSided, shader.forceSunlight};
+            // Traced vertexes first; those whose every position was in solid take the mean of the
+            // lit ones (the ambient light when none is).
+            std::vector<std::optional<Vec3>> traced(size_t(std::max(0, s.numVerts)));
+            Vec3 litSum;
+            int litCount = 0;
+            for (int v = 0; v < s.numVerts; ++v) {
+                const size_t vi = static_cast<size_t>(s.firstVert + v);
+                if (ctx.vertexFromLightmap[vi]) continue;
+                const bsp::DrawVert& dv = bsp.drawVerts[vi];
+                const Vec3 normal =
+                    normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi] : Vec3::fromArray(dv.normal));
+                traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
+                if (traced[size_t(v)] && brighterThan(*traced[size_t(v)], ctx.world.ambient)) {
+                    litSum += *traced[size_t(v)];
+                    ++litCount;
+                }
+            }
+            const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ctx.world.ambient;
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];
-                Vec3 color = ctx.vertexFromLightmap[vi]
-                                 ? ctx.vertexLight[vi]
-                                 : traceVertex(ctx, surfaceEnv, Vec3::fromArray(dv.xyz) + offset,
-                                               normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
-                                                                                        : Vec3::fromArray(dv.normal)),
-                                               shader.twoSided,
-                                               shader.forceSunlight);
+                Vec3 color = ctx.vertexFromLightmap[vi] ? ctx.vertexLight[vi] : traced[size_t(v)].value_or(fallback);
                 color = vmax(color, ctx.world.minVertexLight);
                 const Rgb8 bytes = colorToBytes(color, o.vertexScale * shader.vertexScale, ctx.color);
                 dv.color[0] = bytes[0];

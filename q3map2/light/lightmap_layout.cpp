@@ -1,4 +1,5 @@
 #include "lightmap_layout.h"
+#include "lightmap_layout_mapping.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,9 +15,10 @@ int resolveSampleSize(bool srfLoaded, int srfSampleSize, int shaderSampleSize, i
 }
 
 bool isLightmappedSurface(const bsp::Surface& surface, bool shaderVertexLit) {
-    const bool lightmappableType = surface.surfaceType == bsp::MST_PLANAR || surface.surfaceType == bsp::MST_PATCH ||
-                                   surface.surfaceType == bsp::MST_TRIANGLE_SOUP;
-    return lightmappableType && surface.lightmapNum != bsp::kLightmapByVertex && !shaderVertexLit;
+    // q3map2 SetupSurfaceLightmaps: the type and the shader decide; whatever lightmapNum an earlier
+    // run left in the file does not (a BSP fresh from -bsp has -3 everywhere).
+    const bool lightmappableType = surface.surfaceType == bsp::MST_PLANAR || surface.surfaceType == bsp::MST_PATCH;
+    return lightmappableType && !shaderVertexLit;
 }
 
 SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex, std::span<const Vec3> normals) {
@@ -62,7 +64,7 @@ patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, 
     return grid;
 }
 
-CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals) {
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals, float longestCurve) {
     patch::ControlGrid grid = patchControlGrid(bsp, s, Vec3{}, normals);
     for (size_t v = 0; v < grid.points.size(); ++v) {
         grid.points[v].st[0] = float(int(v) % std::max(1, s.patchWidth));
@@ -70,7 +72,8 @@ CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<cons
     }
     CurvedMesh mesh;
     if (!patch::isValidGrid(grid)) return mesh;
-    const patch::PatchMesh tess = patch::tessellateForLighting(grid);
+    const patch::PatchMesh tess =
+        longestCurve > 0.0f ? patch::tessellateForLighting(grid, longestCurve) : patch::tessellateForLighting(grid);
     mesh.width = tess.width;
     mesh.height = tess.height;
     for (const patch::PatchVertex& v : tess.verts) {
@@ -140,41 +143,6 @@ bool nearestOnTriangle(const St& p, const LightmapTriangle& t, std::array<float,
     return true;
 }
 
-// Separating-axis test of the luxel square [x, x+1) x [y, y+1) against a triangle, with the square
-// shrunk by a hair so that touching at an edge does not count.
-bool squareOverlapsTriangle(int x, int y, const LightmapTriangle& t) {
-    constexpr float kShrink = 1e-3f;
-    const float minX = float(x) + kShrink, maxX = float(x + 1) - kShrink;
-    const float minY = float(y) + kShrink, maxY = float(y + 1) - kShrink;
-    float tMinX = 1e30f, tMaxX = -1e30f, tMinY = 1e30f, tMaxY = -1e30f;
-    for (const St& p : t.st) {
-        tMinX = std::min(tMinX, p[0]);
-        tMaxX = std::max(tMaxX, p[0]);
-        tMinY = std::min(tMinY, p[1]);
-        tMaxY = std::max(tMaxY, p[1]);
-    }
-    if (tMaxX < minX || tMinX > maxX || tMaxY < minY || tMinY > maxY) return false;
-    const St corners[4] = {{minX, minY}, {maxX, minY}, {minX, maxY}, {maxX, maxY}};
-    for (int e = 0; e < 3; ++e) {
-        const St& a = t.st[e];
-        const St& b = t.st[(e + 1) % 3];
-        const St& c = t.st[(e + 2) % 3];
-        const float nx = -(b[1] - a[1]), ny = b[0] - a[0];
-        const float side = nx * (c[0] - a[0]) + ny * (c[1] - a[1]);
-        if (side == 0.0f) return false;  // degenerate
-        bool allOutside = true;
-        for (const St& q : corners) {
-            const float s = nx * (q[0] - a[0]) + ny * (q[1] - a[1]);
-            if ((side > 0.0f && s >= 0.0f) || (side < 0.0f && s <= 0.0f)) {
-                allOutside = false;
-                break;
-            }
-        }
-        if (allOutside) return false;
-    }
-    return true;
-}
-
 // Triangle index cells cover super luxels -1..width and -1..height.
 int cellOf(const RawLightmap& lm, float x, float y) {
     const int cw = lm.superWidth() + 2, ch = lm.superHeight() + 2;
@@ -238,43 +206,18 @@ Luxel luxelAt(const RawLightmap& lm, const St& p, const Nearest& n) {
     } else {
         origin = t.position[0] * n.bary[0] + t.position[1] * n.bary[1] + t.position[2] * n.bary[2];
     }
-    if (dot(normal, normal) == 0.0f) normal = normalize(cross(t.position[2] - t.position[0], t.position[1] - t.position[0]));
-    return {origin + normal * lm.sampleOffset, normal, true};
-}
-
-void mapLuxels(RawLightmap& lm) {
-    indexTriangles(lm);
-    const int sw = lm.superWidth(), sh = lm.superHeight();
-    lm.luxels.assign(size_t(sw) * sh, Luxel{});
-    // Per luxel, the nearest of the triangles its square overlaps (centre inside: distance 0).
-    std::vector<Nearest> best(size_t(sw) * sh);
-    for (size_t ti = 0; ti < lm.triangles.size(); ++ti) {
-        const LightmapTriangle& t = lm.triangles[ti];
-        float minX = 1e30f, maxX = -1e30f, minY = 1e30f, maxY = -1e30f;
-        for (const St& p : t.st) {
-            minX = std::min(minX, p[0]);
-            maxX = std::max(maxX, p[0]);
-            minY = std::min(minY, p[1]);
-            maxY = std::max(maxY, p[1]);
-        }
-        const int x0 = std::max(0, int(std::floor(minX))), x1 = std::min(sw - 1, int(std::floor(maxX)));
-        const int y0 = std::max(0, int(std::floor(minY))), y1 = std::min(sh - 1, int(std::floor(maxY)));
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                if (!squareOverlapsTriangle(x, y, t)) continue;
-                std::array<float, 3> bary;
-                float dist;
-                const St centre{float(x) + 0.5f, float(y) + 0.5f};
-                if (!nearestOnTriangle(centre, t, bary, dist)) continue;
-                Nearest& b = best[size_t(y) * sw + x];
-                if (dist < b.distance) b = {dist, int(ti), bary};
-            }
-    }
-    for (int y = 0; y < sh; ++y)
-        for (int x = 0; x < sw; ++x) {
-            const Nearest& n = best[size_t(y) * sw + x];
-            if (n.triangle >= 0) lm.luxels[size_t(y) * sw + x] = luxelAt(lm, {float(x) + 0.5f, float(y) + 0.5f}, n);
-        }
+    Vec3 face = normalize(cross(t.position[2] - t.position[0], t.position[1] - t.position[0]));
+    if (dot(normal, normal) == 0.0f) normal = face;
+    if (dot(face, normal) < 0.0f) face = -face;
+    if (dot(face, face) == 0.0f) face = normal;
+    const Vec3 surfacePoint = t.position[0] * n.bary[0] + t.position[1] * n.bary[1] + t.position[2] * n.bary[2];
+    const Vec3 plane = lm.planar ? lm.planeNormal : face;
+    Vec3 pushed = origin;
+    if (lm.axisNum >= 0)
+        pushed[lm.axisNum] += plane[lm.axisNum] < 0.0f ? -lm.sampleOffset : lm.sampleOffset;
+    else
+        pushed += face * lm.sampleOffset;
+    return {pushed, normal, true, surfacePoint, normal, plane};
 }
 
 Vec3 vertexNormal(const SurfaceGeometry& g, size_t i) {
@@ -318,6 +261,24 @@ void addSurfaceTriangles(RawLightmap& lm, const SurfaceGeometry& g, const Projec
         }
         if (valid) lm.triangles.push_back(t);
     }
+}
+
+// What q3map2 maps of a projected surface: a flat patch's tessellation quad by quad, else its
+// triangles.
+template <typename Project>
+MappingSurface projectedMappingSurface(const SurfaceGeometry& g, const Project& project) {
+    MappingSurface out;
+    const CurvedMesh& m = g.mesh;
+    if (g.surfaceType == bsp::MST_PATCH && m.width >= 2 && m.height >= 2 && m.positions.size() == size_t(m.width) * m.height) {
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            out.verts.push_back({project(m.positions[i]), m.positions[i], i < m.normals.size() ? m.normals[i] : g.planeNormal});
+        out.quadWidth = m.width;
+        out.quadHeight = m.height;
+        return out;
+    }
+    for (size_t i = 0; i < g.positions.size(); ++i) out.verts.push_back({project(g.positions[i]), g.positions[i], vertexNormal(g, i)});
+    out.triangles = g.triangles;
+    return out;
 }
 
 // q3map2 AddSurfaceToRawLightmap for surfaces projected along an axis. The first surface of the
@@ -427,8 +388,13 @@ std::optional<RawLightmap> layoutProjected(std::span<const SurfaceGeometry> grou
         const Vec3 d = p - start;
         return {(d[sAxis] * inv + 0.5f) * S, (d[tAxis] * inv + 0.5f) * S};
     };
-    for (const SurfaceGeometry& member : group) addSurfaceTriangles(lm, member, project);
-    mapLuxels(lm);
+    std::vector<MappingSurface> mapping;
+    for (const SurfaceGeometry& member : group) {
+        addSurfaceTriangles(lm, member, project);
+        mapping.push_back(projectedMappingSurface(member, project));
+    }
+    indexTriangles(lm);
+    mapSurfacesOntoLuxels(lm, mapping);
     return lm;
 }
 
@@ -497,6 +463,12 @@ std::optional<RawLightmap> layoutCurvedPatch(const SurfaceGeometry& g, const Sur
         t.position[size_t(k)] = mesh.positions[i];
         t.normal[size_t(k)] = i < mesh.normals.size() ? mesh.normals[i] : Vec3{};
     };
+    MappingSurface mapping;
+    mapping.quadWidth = mesh.width;
+    mapping.quadHeight = mesh.height;
+    for (size_t i = 0; i < count; ++i)
+        mapping.verts.push_back({{(sBasis * mesh.controlU[i] + 0.5f) * S, (tBasis * mesh.controlV[i] + 0.5f) * S},
+                                 mesh.positions[i], i < mesh.normals.size() ? mesh.normals[i] : Vec3{}});
     for (int y = 0; y + 1 < mesh.height; ++y)
         for (int x = 0; x + 1 < mesh.width; ++x) {
             // Alternate the quad diagonal as q3map2 does ((x + y) & 1).
@@ -512,7 +484,8 @@ std::optional<RawLightmap> layoutCurvedPatch(const SurfaceGeometry& g, const Sur
             lm.triangles.push_back(a);
             lm.triangles.push_back(b);
         }
-    mapLuxels(lm);
+    indexTriangles(lm);
+    mapSurfacesOntoLuxels(lm, std::span(&mapping, 1));
     return lm;
 }
 

@@ -29,7 +29,7 @@ struct LayoutOptions {
 struct SurfaceLightmapParams {
     int sampleSize = kDefaultSampleSize;  // resolveSampleSize()
     Vec3 axis{0, 0, 0};                   // forced projection axis (.srf lightmapAxis, q3map_lightmapAxis)
-    float sampleOffset = 1.0f;            // q3map_lightmapSampleOffset: push-off along the normal
+    float sampleOffset = 1.0f;            // q3map_lightmapSampleOffset: push-off of luxel sample points
     int pageWidth = 0, pageHeight = 0;    // q3map_lightmapSize (0 = LayoutOptions::pageSize)
 };
 
@@ -38,8 +38,9 @@ struct SurfaceLightmapParams {
 // multiplied by -samplescale when that is > 0. Never below 1.
 int resolveSampleSize(bool srfLoaded, int srfSampleSize, int shaderSampleSize, int defaultSampleSize, int sampleScale);
 
-// True for surfaces that get a lightmap: planar, patch and triangle-soup surfaces that are not vertex
-// lit (lightmapNum -3 from -bsp, or a shader with surfaceparm nolightmap / pointlight).
+// True for surfaces that get a lightmap, decided as q3map2 does from the surface type and the shader
+// only: planar and patch surfaces whose shader is not vertex lit (surfaceparm nolightmap /
+// pointlight). Triangle soups and foliage are vertex lit; the lightmapNum in the file is ignored.
 bool isLightmappedSurface(const bsp::Surface& surface, bool shaderVertexLit);
 
 // A tessellated patch: a width x height grid of points on the curved surface. controlU/V is the
@@ -59,7 +60,10 @@ patch::ControlGrid patchControlGrid(const bsp::Bsp& bsp, const bsp::Surface& s, 
 // The lighting tessellation of a patch for the layout: each point's position in control-point index
 // space is carried through the tessellation in the st channel (Bezier blending of evenly spaced
 // indices is linear, so the result is the exact control-space coordinate). Model space.
-CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals = {});
+// `longestCurve` > 0: the surface's recorded (LOD-grouped) longest curve from the .srf, which sets
+// the subdivision as q3map2's mapping does; 0 measures the grid alone.
+CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<const Vec3> normals = {},
+                      float longestCurve = 0.0f);
 
 // What the layout needs of one BSP surface.
 struct SurfaceGeometry {
@@ -80,9 +84,18 @@ SurfaceGeometry surfaceGeometry(const bsp::Bsp& bsp, int surfaceIndex, std::span
 
 // One super-sampled luxel.
 struct Luxel {
-    Vec3 origin;          // where light is sampled: on the surface, pushed off along the normal
+    // Where light is sampled: on the surface, pushed off by the sample offset. Planar lightmaps push
+    // along their projection axis (towards the side the plane faces), curved ones along the plane
+    // of the triangle under the luxel, as q3map2 MapSingleLuxel does.
+    Vec3 origin;
     Vec3 normal;          // interpolated, unit length
     bool mapped = false;  // false: no triangle covers it (to be filled from neighbours)
+    // The surface point that mapped the luxel first (q3map2's last resort when the sample point and
+    // its nudges are all in solid is this point pushed off along surfaceNormal), and the plane it
+    // was mapped with (its normal spans the nudges of curved lightmaps).
+    Vec3 surfacePoint;
+    Vec3 surfaceNormal;
+    Vec3 faceNormal;
 };
 
 // A triangle in super-luxel space (luxel (x,y) spans [x, x+1) x [y, y+1)) with world attributes.

@@ -16,25 +16,24 @@ namespace q3::light {
 namespace {
 
 constexpr float kLuxelEpsilon = 0.125f;  // LUXEL_EPSILON of q3map2's point-in-solid test
+constexpr float kDefaultSampleOffset = 1.0f;  // DEFAULT_LIGHTMAP_SAMPLE_OFFSET
 
 
-// q3map2 MapSingleLuxel: a luxel in solid is moved by half a luxel along the lightmap's s and t
-// steps (never along the normal, so that a luxel under a detail brush lying on the surface stays
-// in solid and is filled from its neighbours instead of being lit from the far side of that brush).
-std::vector<Vec3> luxelNudges(Vec3 sStep, Vec3 tStep, int superSample) {
-    const Vec3 s = sStep * (0.5f / static_cast<float>(std::max(1, superSample)));
-    const Vec3 t = tStep * (0.5f / static_cast<float>(std::max(1, superSample)));
-    return {s, -s, t, -t, s + t, s - t, -s + t, -s - t};
-}
-std::vector<Vec3> luxelNudges(const std::array<Vec3, 2>& tangents, int superSample) {
-    return luxelNudges(tangents[0], tangents[1], superSample);
+// q3map2 MapSingleLuxel: a luxel in solid is moved by half a step along two in-plane vectors, in
+// this order (never along the normal, so that a luxel under a detail brush lying on the surface
+// stays in solid and is filled from its neighbours instead of being lit from the far side of it).
+std::array<Vec3, 8> luxelNudges(Vec3 s, Vec3 t) {
+    s *= 0.5f;
+    t *= 0.5f;
+    return {-s, s, t, -t, -s + t, s - t, s + t, -s - t};
 }
 
-// Curved surfaces have no lightmap steps: q3map2 uses unit vectors perpendicular to the normal.
-std::array<Vec3, 2> curvedTangents(Vec3 normal) {
-    const Vec3 helper = std::fabs(normal.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    const Vec3 s = normalize(cross(normal, helper));
-    return {s, cross(normal, s)};
+// Unit vectors perpendicular to `normal`, built as q3map2's MakeNormalVectors does (curved
+// lightmaps have no luxel steps, so their nudges are half a unit along these).
+std::array<Vec3, 2> normalVectors(Vec3 normal) {
+    Vec3 right{normal.z, -normal.x, normal.y};
+    right = normalize(right - normal * dot(right, normal));
+    return {right, cross(right, normal)};
 }
 
 // Luxels grouped in square tiles of the super-sampled lightmap: a light whose envelope misses a
@@ -82,25 +81,58 @@ struct LuxelSampler {
     const RawLightmap& raw;
     Vec3 offset;
     bool twoSided;
-    // Planar lightmaps: the in-plane nudges of every luxel (see luxelNudges).
-    std::vector<Vec3> planarNudges = raw.planar ? luxelNudges(raw.vecs[0], raw.vecs[1], raw.superSample)
-                                                : std::vector<Vec3>{};
+    std::vector<int> clusters;  // the surface's clusters: a sample point must see one of them
+    // Planar lightmaps: the in-plane nudges of every luxel, half a super luxel step.
+    std::array<Vec3, 8> planarNudges =
+        luxelNudges(raw.vecs[0] / float(std::max(1, raw.superSample)), raw.vecs[1] / float(std::max(1, raw.superSample)));
 
-    std::optional<SamplePoint> samplePoint(Vec3 origin, Vec3 normal) const {
-        SamplePoint p{origin + offset, normal, -1, twoSided};
-        if (ctx.tree && !ctx.bsp.nodes.empty()) {
-            int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
-            if (cluster < 0) {
-                const std::vector<Vec3> nudges =
-                    raw.planar ? std::vector<Vec3>{} : luxelNudges(curvedTangents(normal), raw.superSample);
-                std::optional<Vec3> free =
-                    ctx.tree->nudgeOutOfSolid(p.origin, raw.planar ? planarNudges : nudges, kLuxelEpsilon);
-                if (!free) return std::nullopt;
-                p.origin = *free;
-                cluster = ctx.tree->clusterForPoint(p.origin);
+    // q3map2 ClusterForPointExtFilter: the cluster of a point out of solid that is one of the
+    // surface's clusters or sees one of them; -1 otherwise.
+    int freeCluster(Vec3 point) const {
+        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, kLuxelEpsilon), clusters);
+    }
+
+    // The luxel's sample point; in solid, the nudges in q3map2's order, then the surface point under
+    // the luxel pushed off along its normal; nullopt when all of them are in solid.
+    std::optional<SamplePoint> samplePoint(const Luxel& lx) const {
+        SamplePoint p{lx.origin + offset, lx.normal, -1, twoSided};
+        if (!ctx.tree || ctx.bsp.nodes.empty()) return p;
+        int cluster = freeCluster(p.origin);
+        if (cluster < 0) {
+            std::array<Vec3, 2> curved{};
+            if (!raw.planar) curved = normalVectors(lx.faceNormal);
+            const std::array<Vec3, 8> nudges = raw.planar ? planarNudges : luxelNudges(curved[0], curved[1]);
+            for (size_t k = 0; k < nudges.size() && cluster < 0; ++k) {
+                cluster = freeCluster(p.origin + nudges[k]);
+                if (cluster >= 0) p.origin += nudges[k];
             }
-            p.cluster = cluster;
         }
+        if (cluster < 0) {
+            const Vec3 lastResort = lx.surfacePoint + offset + lx.surfaceNormal * raw.sampleOffset;
+            cluster = freeCluster(lastResort);
+            if (cluster >= 0) p.origin = lastResort;
+        }
+        if (cluster < 0) return std::nullopt;
+        p.cluster = cluster;
+        return p;
+    }
+
+    // q3map2 maps the unmapped luxels next to mapped ones of a planar lightmap as well: at their
+    // grid point pushed off by the default sample offset, with the mean normal of those neighbours,
+    // nudged like any luxel but with neither the cluster filter nor the last resort.
+    std::optional<SamplePoint> ringPoint(int x, int y, Vec3 normal) const {
+        const float S = float(std::max(1, raw.superSample));
+        const float s = (float(x) + 0.5f) / S - 0.5f, t = (float(y) + 0.5f) / S - 0.5f;
+        SamplePoint p{raw.origin + raw.vecs[0] * s + raw.vecs[1] * t + offset, normal, -1, twoSided};
+        p.origin[raw.axisNum] += raw.planeNormal[raw.axisNum] < 0.0f ? -kDefaultSampleOffset : kDefaultSampleOffset;
+        if (!ctx.tree || ctx.bsp.nodes.empty()) return p;
+        int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
+        for (size_t k = 0; k < planarNudges.size() && cluster < 0; ++k) {
+            cluster = ctx.tree->clusterForPointExt(p.origin + planarNudges[k], kLuxelEpsilon);
+            if (cluster >= 0) p.origin += planarNudges[k];
+        }
+        if (cluster < 0) return std::nullopt;
+        p.cluster = cluster;
         return p;
     }
 
@@ -158,7 +190,7 @@ struct LuxelSampler {
             const float sy = fy + offsets[static_cast<size_t>(k)][1];
             values[k] = centre;
             if (std::optional<Luxel> lx = sampleRawLightmap(raw, sx, sy))
-                if (std::optional<SamplePoint> p = samplePoint(lx->origin, lx->normal))
+                if (std::optional<SamplePoint> p = samplePoint(*lx))
                     values[k] = lightAt(light, *p);
             lit[k] = maxComponent(values[k]) > 0;
         }
@@ -287,7 +319,60 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
     color = std::move(refined);
 }
 
+// The rings of unmapped luxels around the mapped ones (LuxelSampler::ringPoint), grown
+// max(1, superSample / 2) times; each ring sees only the luxels placed before it.
+void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, std::vector<std::optional<SamplePoint>>& points,
+                   std::vector<Vec3>& normals, LuxelImage& image, Vec3 ambient) {
+    const int w = raw.superWidth(), h = raw.superHeight();
+    const int rings = std::max(1, raw.superSample / 2);
+    std::vector<uint8_t> placed(points.size(), 0);
+    for (size_t i = 0; i < points.size(); ++i) placed[i] = raw.luxels[i].mapped;
+    for (int ring = 0; ring < rings; ++ring) {
+        const std::vector<uint8_t> before = placed;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                if (before[i]) continue;
+                Vec3 normal;
+                bool any = false;
+                for (int sy = std::max(0, y - 1); sy <= std::min(h - 1, y + 1); ++sy)
+                    for (int sx = std::max(0, x - 1); sx <= std::min(w - 1, x + 1); ++sx) {
+                        const size_t j = size_t(sy) * size_t(w) + size_t(sx);
+                        if (j == i || !before[j] || !points[j]) continue;
+                        normal += normals[j];
+                        any = true;
+                    }
+                if (!any || dot(normal, normal) == 0.0f) continue;
+                normal = normalize(normal);
+                placed[i] = 1;
+                normals[i] = normal;
+                points[i] = sampler.ringPoint(x, y, normal);
+                image.state[i] = points[i] ? LuxelState::Mapped : LuxelState::Occluded;
+                if (points[i]) image.color[i] = ambient;
+            }
+    }
+}
+
 }  // namespace
+
+std::vector<int> surfaceClusters(const bsp::Bsp& bsp, int surfaceNum) {
+    std::vector<int> out;
+    for (const bsp::Leaf& leaf : bsp.leafs)
+        for (int k = 0; k < leaf.numLeafSurfaces; ++k) {
+            const size_t i = size_t(leaf.firstLeafSurface) + size_t(k);
+            if (i < bsp.leafSurfaces.size() && bsp.leafSurfaces[i] == surfaceNum) out.push_back(leaf.cluster);
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+int clusterSeenBySurface(const BspTree& tree, int cluster, std::span<const int> clusters) {
+    if (cluster < 0 || clusters.empty()) return cluster;
+    for (int c : clusters)
+        if (c == cluster || tree.clusterVisible(cluster, c)) return cluster;
+    return -1;
+}
 
 const LightmapLayer* SurfaceLight::layer(int style) const {
     for (const LightmapLayer& l : layers)
@@ -326,7 +411,8 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const LightOptions& o = ctx.options;
 
     SurfaceGeometry geometry = surfaceGeometry(ctx.bsp, surfaceNum, ctx.shadedNormals);
-    if (surface.surfaceType == bsp::MST_PATCH) geometry.mesh = curvedMesh(ctx.bsp, surface, ctx.shadedNormals);
+    if (surface.surfaceType == bsp::MST_PATCH)
+        geometry.mesh = curvedMesh(ctx.bsp, surface, ctx.shadedNormals, ctx.extras.loaded ? extra.longestCurve : 0.0f);
     SurfaceLightmapParams params;
     params.sampleSize =
         resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize, o.sampleSize, o.sampleScale);
@@ -343,7 +429,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
 
     const int w = raw.superWidth(), h = raw.superHeight();
     const Vec3 offset = ctx.surfaceOffsets[static_cast<size_t>(surfaceNum)];
-    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided};
+    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, surfaceClusters(ctx.bsp, surfaceNum)};
 
     // Sample points of every super luxel.
     const Vec3 ambient = pass.direct ? ctx.world.ambient : Vec3{};
@@ -357,7 +443,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             const size_t i = total.index(x, y);
             if (!lx.mapped) continue;
             superNormals[i] = lx.normal;
-            points[i] = sampler.samplePoint(lx.origin, lx.normal);
+            points[i] = sampler.samplePoint(lx);
             if (points[i]) {
                 total.state[i] = LuxelState::Mapped;
                 total.color[i] = ambient;
@@ -366,6 +452,12 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             } else {
                 total.state[i] = LuxelState::Occluded;
             }
+        }
+    if (raw.planar && raw.axisNum >= 0) mapLuxelRings(sampler, raw, points, superNormals, total, ambient);
+    for (size_t i = 0; i < points.size(); ++i)
+        if (points[i] && !raw.luxels[i].mapped) {
+            bounds.add(points[i]->origin);
+            ++result.luxelCount;
         }
 
     const LightmapReach reach =

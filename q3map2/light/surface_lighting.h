@@ -9,12 +9,14 @@
 #include <span>
 #include <vector>
 
+#include "bspfile.h"
 #include "lightmap_layout.h"
 #include "lights.h"
 #include "vec3.h"
 
 namespace q3::light {
 
+class BspTree;
 struct LightContext;
 struct LightingEnv;
 struct LuxelPasses;
@@ -49,6 +51,12 @@ struct SurfaceLight {
     const LightmapLayer* layer(int style) const;
     LightmapLayer& layerFor(int style);  // creates the layer (zero light) when missing
 };
+
+// The clusters of the leafs whose surface lists hold `surfaceNum` (sorted, unique).
+std::vector<int> surfaceClusters(const bsp::Bsp& bsp, int surfaceNum);
+// q3map2 ClusterForPointExtFilter on a point's cluster: kept when it is one of `clusters` or sees
+// one of them (or when `clusters` is empty), else -1.
+int clusterSeenBySurface(const BspTree& tree, int cluster, std::span<const int> clusters);
 
 // The layout options of the stage (from -super, -samplescale, -lightmapsize, ...).
 LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log);

@@ -77,13 +77,18 @@ TEST(CliCommandLine, CommonOptionErrors) {
 }
 
 TEST(CliCommandLine, CommonOptionAfterTheStage) {
-    // The split leaves stage arguments alone; the stage's parser names the misplaced option.
-    cli::CommandLine line = split({"-light", "-threads", "4", "m.bsp"});
+    // q3map2 takes -threads, -force, -subdivisions, -game and the -fs_ paths from anywhere on the
+    // line: after the stage switch they still set the common options and leave the stage's list.
+    CommonOptions common;
+    cli::CommandLine line = split({"-light", "-fast", "-threads", "4", "-fs_basepath", "/x", "m.bsp"}, &common);
+    EXPECT_EQ(common.threads, 4);
+    ASSERT_EQ(common.basePaths.size(), 1u);
+    EXPECT_EQ(common.basePaths[0], "/x");
+    EXPECT_EQ(line.stageArgs, std::vector<std::string>{"-fast"});
+    // Other common options keep their place before the stage switch.
+    line = split({"-light", "-v", "m.bsp"});
     EXPECT_EQ(usageErrorOf([&] { parseLight(line.stageArgs); }),
-              "common option -threads must come before the stage switch -light");
-    line = split({"-light", "-fast", "-fs_basepath", "/x", "m.bsp"});
-    EXPECT_EQ(usageErrorOf([&] { parseLight(line.stageArgs); }),
-              "common option -fs_basepath must come before the stage switch -light");
+              "common option -v must come before the stage switch -light");
 }
 
 TEST(CliCommandLine, StagesThisBuildLacks) {

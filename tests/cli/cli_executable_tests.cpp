@@ -84,7 +84,7 @@ TEST_F(CliExecutable, UsageErrorsExitWithTwoAndOneLine) {
     expectUsageError("-light -gridsh 16 16 m.bsp", "-gridsh needs 3 values (-gridsh <X> <Y> <Z>)");
     expectUsageError("-light -samplesize", "-light needs a map file as its last argument (-light [options] "
                                            "<filename.map>)");
-    expectUsageError("-light -threads 2 m.bsp", "common option -threads must come before the stage switch -light");
+    expectUsageError("-light -v m.bsp", "common option -v must come before the stage switch -light");
     expectUsageError("-info m.txt", "map file 'm.txt' must end in .bsp or .map (or have no extension)");
     expectUsageError("-help ligth", "no help for unknown stage 'ligth'; did you mean 'light'?");
 }

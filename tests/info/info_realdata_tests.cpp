@@ -200,7 +200,7 @@ TEST(InfoCommandLine, UsageErrorsExitWithTwo) {
         {{}, "no stage given: expected a stage switch such as -light or -info before the map file (see q3map2 -help)"},
         {{"-info"}, "-info needs a map file as its last argument (-info [options] <filename.bsp>)"},
         {{"-info", "-fast", "m.bsp"}, "unknown option '-fast' (see q3map2 -help info)"},
-        {{"-info", "-threads", "2", "m.bsp"}, "common option -threads must come before the stage switch -info"},
+        {{"-info", "-v", "m.bsp"}, "common option -v must come before the stage switch -info"},
         {{"-bsp", "m.map"}, "-bsp is a q3map2 stage this build does not implement yet"},
         {{"-threads", "x", "-info", "m.bsp"}, "-threads: 'x' is not an integer (-threads <N>)"},
     };

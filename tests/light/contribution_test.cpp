@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "bsp_tree.h"
 #include "light_contribution.h"
 #include "light_test_util.h"
 #include "trace_scene.h"
@@ -277,6 +278,45 @@ TEST(GridPoint, NearOccludersAreNotIgnored) {
     LightingEnv env;
     env.scene = &scene;
     EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+}
+
+TEST(GridPoint, InhibitRadiusIgnoresNearOccludersOnly) {
+    // q3map2's grid ignores surfaces closer to the point than its inhibit radius (half the largest
+    // cell side, 64 units for the default 64 x 64 x 128 grid) and stops at those farther away.
+    std::vector<SceneSurface> s{quad({-64, -64, 30}, {128, 0, 0}, {0, 128, 0})};
+    TraceScene scene(s, {});
+    LightingEnv env;
+    env.scene = &scene;
+    env.settings.ignoreNear = 64;
+    EXPECT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+    EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, -40}, -1, env));  // 70 units away
+    env.settings.ignoreNear = 0;
+    EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+}
+
+TEST(GridPoint, StructuralSolidBlocksWithinTheInhibitRadius) {
+    // A structural slab (z 40..60, a leaf outside every cluster) with no surface in the scene, as a
+    // caulked brush has none: it blocks only when solid leaves are tested, whatever the radius.
+    bsp::Bsp b;
+    b.planes = {{{0, 0, 1}, 40}, {{0, 0, 1}, 60}};
+    b.nodes = {{0, {1, -1}, {-1000, -1000, -1000}, {1000, 1000, 1000}},
+               {1, {-3, -2}, {-1000, -1000, 40}, {1000, 1000, 1000}}};
+    b.leafs = {{0, 0, {-1000, -1000, -1000}, {1000, 1000, 40}, 0, 0, 0, 0},
+               {-1, 0, {-1000, -1000, 40}, {1000, 1000, 60}, 0, 0, 0, 0},
+               {1, 0, {-1000, -1000, 60}, {1000, 1000, 1000}, 0, 0, 0, 0}};
+    const BspTree tree(b);
+    std::vector<SceneSurface> none;
+    TraceScene scene(none, {});
+    LightingEnv env;
+    env.scene = &scene;
+    env.tree = &tree;
+    env.settings.ignoreNear = 64;
+    EXPECT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+    env.settings.solidLeavesBlock = true;
+    EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+    EXPECT_TRUE(lightToGridPoint(pointLight({100, 0, 20}, 300), {0, 0, 0}, -1, env));  // beside the slab
+    env.scene = nullptr;  // -notrace: nothing blocks
+    EXPECT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
 }
 
 TEST(SunOnly, SkipsEverythingButSuns) {

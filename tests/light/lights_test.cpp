@@ -326,26 +326,36 @@ TEST(SurfaceLights, AreaLightsChoppedWithBacksplash) {
     std::vector<Light> out;
     appendAreaLights(out, g, sh, {});
     ASSERT_FALSE(out.empty());
+    ASSERT_EQ(out.size() % 2, 0u);  // every piece is followed by its backsplash
     float emitted = 0, splashed = 0;
-    for (const Light& l : out) {
-        if (l.type == LightType::Area) {
-            emitted += l.photons;
-            EXPECT_FLOAT_EQ(l.add, 100.0f * 3.0f * 0.25f);
-            EXPECT_EQ(l.color, sh.color);
-            Bounds b;
-            for (const Vec3& p : l.winding) b.add(p);
-            EXPECT_LE(b.size().x, 64.001f);
-            EXPECT_LE(b.size().y, 64.001f);
-        } else {
-            // q3map2's backsplash: a point light 23 units in front with 5% of the photons.
-            EXPECT_EQ(l.type, LightType::Point);
-            splashed += l.photons;
-            EXPECT_FLOAT_EQ(l.origin.z, -1.0f - 23.0f);
-            EXPECT_TRUE(l.winding.empty());
+    for (size_t i = 0; i < out.size(); i += 2) {
+        const Light& l = out[i];
+        ASSERT_EQ(l.type, LightType::Area);
+        emitted += l.photons;
+        EXPECT_FLOAT_EQ(l.add, 100.0f * 3.0f * 0.25f);
+        EXPECT_EQ(l.color, sh.color);
+        Bounds b;
+        for (const Vec3& p : l.winding) b.add(p);
+        EXPECT_LE(b.size().x, 64.001f);
+        EXPECT_LE(b.size().y, 64.001f);
+        // q3map2 2.5.17n's backsplash: the piece's polygon, reversed and 23 units out along the
+        // normal, facing back at the emitter's wall, one-sided, with 7 x 5 % of its strength.
+        const Light& splash = out[i + 1];
+        ASSERT_EQ(splash.type, LightType::Area);
+        splashed += splash.photons;
+        EXPECT_FLOAT_EQ(splash.add, l.add * 0.35f);
+        EXPECT_EQ(splash.normal, (Vec3{0, 0, 1}));
+        EXPECT_FALSE(splash.twoSided);
+        EXPECT_FLOAT_EQ(splash.origin.z, -1.0f - 23.0f);
+        ASSERT_EQ(splash.winding.size(), l.winding.size());
+        for (size_t k = 0; k < l.winding.size(); ++k) {
+            const Vec3 expected = l.winding[l.winding.size() - 1 - k] + Vec3{0, 0, -23};
+            EXPECT_EQ(splash.winding[k], expected);
         }
+        EXPECT_FLOAT_EQ(splash.planeDist, dot(splash.origin, splash.normal));
     }
     EXPECT_NEAR(emitted, 100.0f * 128 * 128 * 0.25f, 1.0f);
-    EXPECT_NEAR(splashed, emitted * 0.05f, 1.0f);
+    EXPECT_NEAR(splashed, emitted * 0.35f, 1.0f);
 }
 
 TEST(SurfaceLights, BacksplashOptionAndShaderOverride) {
@@ -361,8 +371,8 @@ TEST(SurfaceLights, BacksplashOptionAndShaderOverride) {
     std::vector<Light> out;
     appendAreaLights(out, g, sh, scales);
     ASSERT_EQ(out.size(), 2u);
-    EXPECT_EQ(out[1].type, LightType::Point);
-    EXPECT_FLOAT_EQ(out[1].photons, out[0].photons * 0.1f);
+    EXPECT_EQ(out[1].type, LightType::Area);
+    EXPECT_FLOAT_EQ(out[1].photons, out[0].photons * 7.0f * 0.1f);
     EXPECT_FLOAT_EQ(out[1].origin.z, out[0].origin.z + 40.0f);
     // q3map_backsplash in the shader wins over the command line.
     sh.backsplashSet = true;
@@ -371,7 +381,7 @@ TEST(SurfaceLights, BacksplashOptionAndShaderOverride) {
     out.clear();
     appendAreaLights(out, g, sh, scales);
     ASSERT_EQ(out.size(), 2u);
-    EXPECT_FLOAT_EQ(out[1].photons, out[0].photons * 0.5f);
+    EXPECT_FLOAT_EQ(out[1].photons, out[0].photons * 7.0f * 0.5f);
     EXPECT_FLOAT_EQ(out[1].origin.z, out[0].origin.z + 8.0f);
     // Sky shaders have no backsplash.
     sh.sky = true;

@@ -2,6 +2,8 @@
 // formulas, occlusion by other surfaces, and output that does not depend on the thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 
@@ -56,7 +58,7 @@ int runStage(const std::filesystem::path& bspPath, int threads, LightOptions opt
     CommonOptions common;
     common.mapPath = bspPath;
     common.threads = threads;
-    common.commandLine = "-light room.bsp";
+    common.commandLine = "-light";
     Log log(false);
     return runLightStage(options, common, log);
 }
@@ -110,25 +112,41 @@ TEST(LightPipeline, FloorLuxelsMatchInverseSquareAndShadow) {
     EXPECT_GT(shadowedCount, 0);
 }
 
-TEST(LightPipeline, CompensateDividesAfterTheClamp) {
-    // q3map2's ColorToBytes clamps to 255 first and divides by -compensate last, so with
-    // -compensate 2 a saturated luxel is 127 and no lightmap byte exceeds it (the signature of the
-    // shipped OpenArena lightmaps, whose bytes never exceed 127).
-    bsp::Bsp room = makeRoom();
-    std::vector<bsp::Entity> ents = bsp::parseEntities(room.entities, "room");
-    ents[1].set("light", "5000");  // saturates the floor under it
-    room.entities = bsp::unparseEntities(ents);
-    const auto path = writeRoom(test::tempDir(), room);
-    LightOptions options;
-    options.compensate = 2.0f;
-    ASSERT_EQ(runStage(path, 1, options), 0);
-    const bsp::Bsp lit = bsp::readBsp(path);
-    ASSERT_FALSE(lit.lightmaps.empty());
-    uint8_t brightest = 0;
-    for (int y = 0; y < lit.surfaces[0].lightmapHeight; ++y)
-        for (int x = 0; x < lit.surfaces[0].lightmapWidth; ++x)
-            for (uint8_t c : texel(lit, 0, x, y)) brightest = std::max(brightest, c);
-    EXPECT_EQ(brightest, 127);
+TEST(LightPipeline, CompensateDividesBeforeTheClamp) {
+    // q3map2 2.5.17n divides by -compensate before the hue-keeping clamp: light under 255 x
+    // compensate keeps its gradations and a light five times too bright still reaches 255 (its
+    // -compensate 2 lightmaps of oacmpdm5 peak at 255, not 127).
+    auto light = [](const char* intensity, float compensate) {
+        bsp::Bsp room = makeRoom();
+        std::vector<bsp::Entity> ents = bsp::parseEntities(room.entities, "room");
+        ents[1].set("light", intensity);
+        room.entities = bsp::unparseEntities(ents);
+        const auto path = writeRoom(test::tempDir(), room);
+        LightOptions options;
+        options.compensate = compensate;
+        EXPECT_EQ(runStage(path, 1, options), 0);
+        return bsp::readBsp(path);
+    };
+    auto floorBytes = [](const bsp::Bsp& lit) {
+        std::vector<uint8_t> bytes;
+        for (int y = 0; y < lit.surfaces[0].lightmapHeight; ++y)
+            for (int x = 0; x < lit.surfaces[0].lightmapWidth; ++x)
+                for (uint8_t c : texel(lit, 0, x, y)) bytes.push_back(c);
+        return bytes;
+    };
+    const std::vector<uint8_t> saturated = floorBytes(light("5000", 2.0f));
+    ASSERT_FALSE(saturated.empty());
+    EXPECT_EQ(*std::max_element(saturated.begin(), saturated.end()), 255);
+    const std::vector<uint8_t> plain = floorBytes(light("300", 1.0f));
+    const std::vector<uint8_t> halved = floorBytes(light("300", 2.0f));
+    ASSERT_EQ(plain.size(), halved.size());
+    int compared = 0;
+    for (size_t i = 0; i < plain.size(); ++i) {
+        if (plain[i] < 8 || plain[i] > 250) continue;
+        EXPECT_NEAR(halved[i], plain[i] / 2.0, 1.0) << "byte " << i;
+        ++compared;
+    }
+    EXPECT_GT(compared, 0);
 }
 
 TEST(LightPipeline, GridPointMatchesEncoding) {
@@ -155,8 +173,12 @@ TEST(LightPipeline, WorldspawnRecordsCommandLineAndVersion) {
     const bsp::Bsp lit = bsp::readBsp(path);
     auto ents = bsp::parseEntities(lit.entities, "room.bsp");
     ASSERT_FALSE(ents.empty());
-    EXPECT_EQ(ents[0].value("_q3map2_cmdline"), "q3map2 -light room.bsp");
+    EXPECT_EQ(ents[0].value("_q3map2_cmdline"), "-light");  // q3map2 records the stage and its options
     EXPECT_FALSE(ents[0].value("_q3map2_version").empty());
+    // A second run appends to what earlier stages recorded, as "-bsp -meta; -vis; -light" reads.
+    ASSERT_EQ(runStage(path, 1), 0);
+    ents = bsp::parseEntities(bsp::readBsp(path).entities, "room.bsp");
+    EXPECT_EQ(ents[0].value("_q3map2_cmdline"), "-light; -light");
 }
 
 TEST(LightPipeline, ThreadCountDoesNotChangeOutput) {
@@ -232,6 +254,49 @@ TEST(LightPipeline, BrushModelsCastShadowsOnlyWhenAsked) {
     const int x = a.surfaces[0].lightmapWidth / 2, y = a.surfaces[0].lightmapHeight / 2;
     EXPECT_GT(texel(a, 0, x, y)[0], 200);
     EXPECT_EQ(texel(b, 0, x, y)[0], 0);
+}
+
+TEST(LightPipeline, ShadowedVertexSearchesForALitPosition) {
+    // A vertex-lit soup on the floor at (34, 64): the table's shadow (x 32..96 on the floor) covers
+    // the vertex itself, so q3map2's search moves it up the 4-unit lattice (x, then y, then z
+    // outermost first: z +4 is still shadowed, z -4 is under the floor, z +8 is lit) and keeps the
+    // first lit position.
+    bsp::Bsp room = makeRoom();
+    q3::test::addQuad(room, {34, 64, 0}, {0, 4, 0}, {4, 0, 0}, 0);
+    room.surfaces.back().surfaceType = bsp::MST_TRIANGLE_SOUP;
+    room.models[0].numSurfaces = static_cast<int32_t>(room.surfaces.size());
+    const auto path = writeRoom(test::tempDir(), room);
+    ASSERT_EQ(runStage(path, 1), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    const bsp::DrawVert& v = lit.drawVerts[static_cast<size_t>(lit.surfaces.back().firstVert)];
+    ASSERT_EQ(Vec3::fromArray(v.xyz), (Vec3{34, 64, 0}));
+    const Vec3 toLight = Vec3{64, 64, 100} - Vec3{34, 64, 8};
+    const float d = length(toLight);
+    const Rgb8 expected = colorToBytes(Vec3::splat(2250000.0f / (d * d) * (toLight.z / d)), 1, ColorOptions{});
+    EXPECT_EQ(v.color[0], expected[0]);
+    EXPECT_EQ(v.color[1], expected[1]);
+    EXPECT_GT(v.color[0], 0);
+}
+
+TEST(LightPipeline, LuxelsNextToAPlanarSurfaceAreLitWhereTheyLie) {
+    // A 100 x 100 floor maps luxels 0..6 (s 0.5..6.75); q3map2 also maps the ring of luxels around
+    // them (column 7) at their own grid point, one unit up, instead of copying their neighbours.
+    bsp::Bsp b = makeRoom();
+    b.surfaces.clear();
+    b.drawVerts.clear();
+    b.drawIndexes.clear();
+    q3::test::addQuad(b, {0, 0, 0}, {0, 100, 0}, {100, 0, 0}, 0);
+    b.models[0].numSurfaces = 1;
+    const auto path = writeRoom(test::tempDir(), b);
+    ASSERT_EQ(runStage(path, 1), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    ASSERT_EQ(lit.surfaces[0].lightmapWidth, 8);
+    const Vec3 toLight = Vec3{64, 64, 100} - Vec3{112, 48, 1};
+    const float d = length(toLight);
+    const Rgb8 expected = colorToBytes(Vec3::splat(2250000.0f / (d * d) * (toLight.z / d)), 1, ColorOptions{});
+    const auto got = texel(lit, 0, 7, 3);
+    EXPECT_EQ(got[0], expected[0]);
+    EXPECT_EQ(got[1], expected[1]);
 }
 
 TEST(LightPipeline, MissingBspIsAnError) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 #include <cmath>
@@ -106,6 +107,52 @@ TEST(BspTree, NudgeSearchIsNearestFirst) {
     EXPECT_EQ(*tree.nudgeOutOfSolid({10, 0, 0}, 4.0f, 1.0f), (Vec3{10, 0, 0}));
     const auto coarse = nudgeOffsets(8.0f, 4.0f);  // 0, +-4, +-8 per axis within radius 8
     EXPECT_EQ(*tree.nudgeOutOfSolid({-48, 0, 14}, coarse), (Vec3{-48, 0, 18}));
+}
+
+
+TEST(BspTree, SegmentCrossesSolidLeafOnly) {
+    // Leaf 0 (x > 0) has a cluster; leaf 1 (x < 0) is made solid (no cluster), as structural
+    // brushes are after -bsp. Its detail brush does not matter to the walk.
+    bsp::Bsp b = twoLeafBsp();
+    b.leafs[1].cluster = -1;
+    const BspTree tree(b);
+    EXPECT_FALSE(tree.segmentCrossesSolid({10, 0, 0}, {100, 5, -3}));
+    EXPECT_TRUE(tree.segmentCrossesSolid({10, 0, 0}, {-10, 0, 0}));
+    EXPECT_TRUE(tree.segmentCrossesSolid({-10, 0, 0}, {10, 0, 0}));
+    // Within 0.1 of the plane counts as on the front side (q3map2's TRACE_ON_EPSILON).
+    EXPECT_FALSE(tree.segmentCrossesSolid({10, 0, 0}, {-0.05f, 0, 0}));
+    EXPECT_TRUE(tree.segmentCrossesSolid({10, 0, 0}, {-0.2f, 0, 0}));
+    // Along the plane itself: front side, open.
+    EXPECT_FALSE(tree.segmentCrossesSolid({0, -50, 0}, {0, 50, 0}));
+    // With both leafs in clusters only the detail brush is between: nothing solid is crossed.
+    EXPECT_FALSE(BspTree(twoLeafBsp()).segmentCrossesSolid({10, 0, 0}, {-100, 0, 0}));
+    // No node tree: nothing can be tested, nothing blocks.
+    bsp::Bsp flat = b;
+    flat.nodes.clear();
+    EXPECT_FALSE(BspTree(flat).segmentCrossesSolid({10, 0, 0}, {-10, 0, 0}));
+    // A node pointing at itself ends instead of looping.
+    bsp::Bsp loop = b;
+    loop.nodes[0].children[0] = 0;
+    loop.nodes[0].children[1] = 0;
+    EXPECT_FALSE(BspTree(loop).segmentCrossesSolid({10, 0, 0}, {20, 0, 0}));
+}
+
+TEST(BspTree, BoxNudgeSearchGoesRingByRing) {
+    // Half a 64 x 64 x 128 cell: z steps are twice as long as x and y steps, and the search
+    // widens the box in proportion, as q3map2's random nudges do.
+    const auto offsets = nudgeOffsetsInBox({32, 32, 64}, 4);
+    ASSERT_EQ(offsets.size(), 9u * 9u * 9u);
+    EXPECT_EQ(offsets[0], (Vec3{0, 0, 0}));
+    EXPECT_EQ(offsets[1], (Vec3{0, -8, 0}));  // first ring, shortest first, then by z, y, x
+    for (const Vec3& o : offsets) {
+        EXPECT_LE(std::fabs(o.x), 32.0f);
+        EXPECT_LE(std::fabs(o.z), 64.0f);
+    }
+    // Every first-ring offset (one step of 8, 8, 16) comes before any second-ring one.
+    auto ring = [](Vec3 o) { return std::max({std::fabs(o.x) / 8, std::fabs(o.y) / 8, std::fabs(o.z) / 16}); };
+    for (size_t i = 1; i < offsets.size(); ++i) EXPECT_LE(ring(offsets[i - 1]), ring(offsets[i]) + 1e-6f);
+    EXPECT_EQ(ring(offsets[26]), 1.0f);
+    EXPECT_EQ(ring(offsets[27]), 2.0f);
 }
 
 }  // namespace

@@ -23,11 +23,12 @@ TEST(ColorPipeline, ScaleAndCompensate) {
     EXPECT_EQ(colorToBytes({40, 80, 120}, 0.0f, o), (Rgb8{40, 80, 120}));
     o.compensate = 4.0f;
     EXPECT_EQ(colorToBytes({40, 80, 120}, 1.0f, o), (Rgb8{10, 20, 30}));
-    // q3map2 clamps first and compensates after: 800 400 0 -> 255 127.5 0 -> /4 -> 63 31 0, so no
-    // byte can exceed 255/compensate.
-    EXPECT_EQ(colorToBytes({800, 400, 0}, 1.0f, o), (Rgb8{63, 31, 0}));
+    // q3map2 2.5.17n compensates before the hue-keeping clamp: 800 400 0 -> /4 -> 200 100 0, and
+    // light up to 255 * compensate stays apart.
+    EXPECT_EQ(colorToBytes({800, 400, 0}, 1.0f, o), (Rgb8{200, 100, 0}));
     o.compensate = 2.0f;
-    EXPECT_EQ(colorToBytes({1000, 1000, 1000}, 1.0f, o), (Rgb8{127, 127, 127}));
+    EXPECT_EQ(colorToBytes({400, 200, 100}, 1.0f, o), (Rgb8{200, 100, 50}));
+    EXPECT_EQ(colorToBytes({1020, 510, 0}, 1.0f, o), (Rgb8{255, 127, 0}));
 }
 
 TEST(ColorPipeline, BrightnessComesFirst) {

@@ -37,13 +37,17 @@ TEST(LightmapLayout, ResolveSampleSizeAndLightmappedSurfaces) {
     s.lightmapNum = 0;
     EXPECT_TRUE(isLightmappedSurface(s, false));
     EXPECT_FALSE(isLightmappedSurface(s, true));
-    s.lightmapNum = bsp::kLightmapByVertex;
-    EXPECT_FALSE(isLightmappedSurface(s, false));
+    s.lightmapNum = bsp::kLightmapByVertex;  // fresh from -bsp: the file's value does not decide
+    EXPECT_TRUE(isLightmappedSurface(s, false));
+    s.surfaceType = bsp::MST_PATCH;
+    EXPECT_TRUE(isLightmappedSurface(s, false));
     s.lightmapNum = 0;
     s.surfaceType = bsp::MST_FLARE;
     EXPECT_FALSE(isLightmappedSurface(s, false));
-    s.surfaceType = bsp::MST_TRIANGLE_SOUP;
-    EXPECT_TRUE(isLightmappedSurface(s, false));
+    s.surfaceType = bsp::MST_TRIANGLE_SOUP;  // q3map2 vertex-lights soups, whatever the file held
+    EXPECT_FALSE(isLightmappedSurface(s, false));
+    s.surfaceType = bsp::MST_FOLIAGE;
+    EXPECT_FALSE(isLightmappedSurface(s, false));
 }
 
 TEST(LightmapLayout, PlanarFloor) {
@@ -107,10 +111,12 @@ TEST(LightmapLayout, SlopedPlaneLuxelsLieOnThePlane) {
     EXPECT_NEAR(lm->vecs[1].x, 0.0f, 1e-6f);
     EXPECT_NEAR(lm->vecs[1].y, 16.0f, 1e-6f);  // one luxel along t is 16 units of y, climbing 8 in z
     EXPECT_NEAR(lm->vecs[1].z, 8.0f, 1e-5f);
+    // The sample offset pushes along the projection axis (z), not along the normal.
     int checked = 0;
     for (const Luxel& l : lm->luxels) {
         if (!l.mapped) continue;
-        EXPECT_NEAR(dot(l.origin, n) - d, 2.0f, 1e-3f);
+        EXPECT_NEAR(dot(l.origin, n) - d, 2.0f * n.z, 1e-3f);
+        EXPECT_NEAR(dot(l.origin - Vec3{0, 0, 2}, n) - d, 0.0f, 1e-3f);
         ++checked;
     }
     EXPECT_EQ(checked, 5 * 5);
@@ -131,7 +137,7 @@ TEST(LightmapLayout, ForcedAxisFromTheSrf) {
     EXPECT_NEAR(dot(lm->vecs[0], n), 0.0f, 1e-5f);
     for (const Luxel& l : lm->luxels)
         if (l.mapped) {
-            EXPECT_NEAR(dot(l.origin, n), 1.0f, 1e-3f);
+            EXPECT_NEAR(dot(l.origin, n), n.z, 1e-3f);  // one unit up the forced z axis
         }
 
     // An axis lying in the plane cannot project onto it: no NaNs, and nothing maps (the surface is a
@@ -240,15 +246,20 @@ TEST(LightmapLayout, CurvedPatch) {
     EXPECT_FLOAT_EQ(lm->vertexCoords[4][0], 6.5f);  // sBasis 6 * 1 + 0.5
     EXPECT_FLOAT_EQ(lm->vertexCoords[4][1], 2.5f);  // tBasis 2 * 1 + 0.5
     EXPECT_EQ(mappedCount(*lm), 65);
+    // Curved luxels sample at the first point mapped into them, pushed off along the plane of the
+    // quad it came from (the left facet of the control grid, (-1, 0, 1) / sqrt 2), not its normal.
     const Luxel& first = lm->luxel(0, 0);
-    const Vec3 n0 = normalize(Vec3{1, 0, 1});
-    EXPECT_NEAR(first.origin.x, n0.x, 1e-5f);
-    EXPECT_NEAR(first.origin.z, n0.z, 1e-5f);
-    // Luxel (6, 2) sits on control point 4 (the ridge).
+    const Vec3 facet = normalize(Vec3{-1, 0, 1});
+    EXPECT_EQ(first.surfacePoint, (Vec3{0, 0, 0}));
+    EXPECT_NEAR(first.origin.x, facet.x, 1e-5f);
+    EXPECT_NEAR(first.origin.z, facet.z, 1e-5f);
+    EXPECT_NEAR(first.faceNormal.x, facet.x, 1e-5f);
+    // Luxel (6, 2) sits on control point 4 (the ridge), reached first by the left quad.
     const Luxel& ridge = lm->luxel(6, 2);
-    EXPECT_NEAR(ridge.origin.x, 64.0f, 1e-4f);
+    EXPECT_EQ(ridge.surfacePoint, (Vec3{64, 32, 64}));
+    EXPECT_NEAR(ridge.origin.x, 64.0f + facet.x, 1e-4f);
     EXPECT_NEAR(ridge.origin.y, 32.0f, 1e-4f);
-    EXPECT_NEAR(ridge.origin.z, 65.0f, 1e-4f);
+    EXPECT_NEAR(ridge.origin.z, 64.0f + facet.z, 1e-4f);
     EXPECT_EQ(lm->origin, (Vec3{0, 0, 0}));
 
     // With a tessellated mesh, its points map by their control-space position.
@@ -268,9 +279,11 @@ TEST(LightmapLayout, CurvedPatch) {
     // Segment lengths sqrt(32^2 + 24^2) = 40 and sqrt(32^2 + 8^2) = 32.98, twice: 145.97 -> 11 luxels.
     EXPECT_EQ(curved->width, 11);
     const Luxel& top = curved->luxel(5, 1);  // s centre 5.5 = sBasis 5 * u 1 + 0.5: the top of the arch
-    EXPECT_NEAR(top.origin.x, 64.0f, 1e-3f);
-    EXPECT_NEAR(top.origin.z, 33.0f, 1e-3f);
-    EXPECT_NEAR(top.normal.z, 1.0f, 1e-5f);
+    EXPECT_NEAR(top.surfacePoint.x, 64.0f, 1e-3f);
+    EXPECT_NEAR(top.surfacePoint.z, 32.0f, 1e-3f);
+    EXPECT_NEAR(length(top.origin - top.surfacePoint), 1.0f, 1e-4f);
+    EXPECT_LT(top.origin.x, 64.0f);  // off the left facet's plane, which leans back
+    EXPECT_NEAR(top.normal.z, 1.0f, 1e-5f);  // the mean of every point's normal
 }
 
 TEST(LightmapLayout, DegenerateSurfaces) {
@@ -290,6 +303,40 @@ TEST(LightmapLayout, AppliesTheOriginOnly) {
     applyLightmapOrigin(s, *lm);
     EXPECT_EQ(s.lightmapOrigin[0], 10.0f);
     EXPECT_EQ(s.lightmapVecs[0][0], 5.0f);
+}
+
+TEST(LightmapLayout, EdgeOnALuxelBorderMapsTheNextLuxel) {
+    // A strip 8 units tall facing -y: t runs 0.5..1.0, so its top edge lies on the border of row 1.
+    // q3map2 drops the vertices into luxel floor(t) = 1, so row 1 samples too (row 0 may be in
+    // solid under a floor); a test of square overlap would leave row 1 unmapped.
+    const auto lm = layoutSurfaceLightmap(quad({0, 0, 0}, {0, 0, 8}, {64, 0, 8}, {64, 0, 0}, {0, -1, 0}), {}, {});
+    ASSERT_TRUE(lm.has_value());
+    EXPECT_EQ(lm->axisNum, 1);
+    ASSERT_EQ(lm->height, 2);
+    for (int x = 0; x < lm->width; ++x) {
+        EXPECT_TRUE(lm->luxel(x, 0).mapped) << x;
+        EXPECT_TRUE(lm->luxel(x, 1).mapped) << x;
+        // Row 1 samples on the grid (z = 16) one unit in front, but remembers a point on the strip.
+        EXPECT_EQ(lm->luxel(x, 1).origin, (Vec3{16.0f * float(x), -1, 16}));
+        EXPECT_LE(lm->luxel(x, 1).surfacePoint.z, 8.0f);
+        EXPECT_EQ(lm->luxel(x, 1).surfaceNormal, (Vec3{0, -1, 0}));
+    }
+}
+
+TEST(LightmapLayout, DiagonalEdgesMapOnlyTheLuxelsTheyCross) {
+    // Right triangle (0,0) (64,0) (0,64) on the floor: luxel (4, 4) (s 4.0..5.0, t 4.0..5.0) holds
+    // the hypotenuse's point (32, 32) -> s = t = 2.5 only; beyond it nothing maps.
+    SurfaceGeometry g = floorQuad();
+    g.positions = {{0, 0, 0}, {64, 0, 0}, {0, 64, 0}};
+    g.normals.resize(3);
+    g.triangles = {0, 2, 1};
+    const auto lm = layoutSurfaceLightmap(g, {}, {});
+    ASSERT_TRUE(lm.has_value());
+    EXPECT_TRUE(lm->luxel(0, 0).mapped);
+    EXPECT_TRUE(lm->luxel(2, 2).mapped);   // on the hypotenuse (s + t = 5)
+    EXPECT_TRUE(lm->luxel(4, 0).mapped);   // the vertex (64, 0) at s 4.5
+    EXPECT_FALSE(lm->luxel(4, 4).mapped);  // far side of the hypotenuse
+    EXPECT_FALSE(lm->luxel(3, 3).mapped);
 }
 
 }  // namespace

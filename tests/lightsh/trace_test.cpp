@@ -68,7 +68,7 @@ TEST(ShTrace, PointLightMatchesLegacyContribution) {
     const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats);
     ASSERT_EQ(grid.points.size(), 125u);
     EXPECT_EQ(stats.blackAfterFill, 0u);
-    const LightingEnv env = gridLightingEnv(*ctx);
+    const LightingEnv env = gridLightingEnv(*ctx, layout.size);
     const std::vector<Vec3d> normals = randomNormals(200, 7);
     for (int i = 0; i < 125; ++i) {
         const Vec3 origin = layout.pointOrigin(i % 5, (i / 5) % 5, i / 25);
@@ -105,7 +105,7 @@ TEST(ShTrace, RedAndBlueOnOppositeSidesLegacyCannot) {
 
     // The legacy grid keeps one direction: the weaker light, opposite to it, only reaches the
     // ambient part at a quarter of its strength.
-    const LightingEnv env = gridLightingEnv(*ctx);
+    const LightingEnv env = gridLightingEnv(*ctx, kDefaultGridSize);
     std::vector<LightContribution> contributions;
     gatherGridLight(ctx->lights, {0, 0, 0}, -1, env, contributions);
     const GridSample legacy = accumulateGridSample(contributions, {}, GridOptions{});
@@ -412,9 +412,10 @@ TEST(ShTrace, ManyLightsStayWithinTheTruncationBounds) {
         ctx->lights.push_back(pointLight(dir * (150.0f + float(i % 5) * 20), 40, color));
     }
     test::CapturingLog log;
-    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    const ShGridLayout layout = setupGridSH(*ctx, log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
     const sh::SH9Color value = pointSH(grid, 0);
-    const LightingEnv env = gridLightingEnv(*ctx);
+    const LightingEnv env = gridLightingEnv(*ctx, layout.size);
     std::vector<LightContribution> contributions;
     gatherGridLight(ctx->lights, {0, 0, 0}, -1, env, contributions);
     ASSERT_EQ(contributions.size(), 64u);

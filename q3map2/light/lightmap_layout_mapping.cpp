@@ -1,0 +1,199 @@
+#include "lightmap_layout_mapping.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace q3::light {
+namespace {
+
+constexpr float kSplitThreshold = 1.0f;  // squared edge length (super luxels) below which splitting stops
+constexpr float kAxialEpsilon = 0.01f;   // an edge this close to a lightmap axis counts as axial
+constexpr float kQuadFlatness = 0.5f;    // the fourth point of a flat quad lies this close to its plane
+
+MapVertex midpoint(const MapVertex& a, const MapVertex& b) {
+    return {{(a.st[0] + b.st[0]) * 0.5f, (a.st[1] + b.st[1]) * 0.5f}, (a.xyz + b.xyz) * 0.5f,
+            normalize(a.normal + b.normal)};
+}
+
+float squaredStDistance(const MapVertex& a, const MapVertex& b) {
+    const float ds = a.st[0] - b.st[0], dt = a.st[1] - b.st[1];
+    return ds * ds + dt * dt;
+}
+
+// The plane a primitive is mapped with: the lightmap's own plane when it has one, else the plane
+// through the first three points (facing like their normals); false when degenerate.
+bool primitivePlane(const RawLightmap& lm, const MapVertex& a, const MapVertex& b, const MapVertex& c, Vec3& normal,
+                    float& dist) {
+    if (lm.planar) {
+        normal = lm.planeNormal;
+        dist = lm.planeDist;
+    } else {
+        normal = cross(c.xyz - a.xyz, b.xyz - a.xyz);
+        if (dot(normal, normal) < 1e-12f) return false;
+        normal = normalize(normal);
+        if (dot(normal, a.normal + b.normal + c.normal) < 0.0f) normal = -normal;
+        dist = dot(a.xyz, normal);
+    }
+    // A projected lightmap cannot place luxels on a plane parallel to its axis.
+    return lm.axisNum < 0 || normal[lm.axisNum] != 0.0f;
+}
+
+class LuxelMapper {
+public:
+    explicit LuxelMapper(RawLightmap& lm) : lm_(lm), normalSums_(lm.luxels.size()) {}
+
+    void mapSurface(const MappingSurface& s) {
+        if (s.quadWidth >= 2 && s.quadHeight >= 2 && s.verts.size() == size_t(s.quadWidth) * size_t(s.quadHeight)) {
+            mapQuadMesh(s);
+            return;
+        }
+        for (int nonAxial = 0; nonAxial < 2; ++nonAxial)
+            for (size_t i = 0; i + 2 < s.triangles.size(); i += 3) {
+                const uint32_t a = s.triangles[i], b = s.triangles[i + 1], c = s.triangles[i + 2];
+                if (a >= s.verts.size() || b >= s.verts.size() || c >= s.verts.size()) continue;
+                mapTriangle({s.verts[a], s.verts[b], s.verts[c]}, nonAxial != 0);
+            }
+    }
+
+    void finish() {
+        for (size_t i = 0; i < lm_.luxels.size(); ++i)
+            if (lm_.luxels[i].mapped && dot(normalSums_[i], normalSums_[i]) > 0.0f)
+                lm_.luxels[i].normal = normalize(normalSums_[i]);
+    }
+
+private:
+    using Tri = std::array<MapVertex, 3>;
+    using Quad = std::array<MapVertex, 4>;
+
+    void mapPoint(const MapVertex& v, Vec3 planeNormal, float planeDist) {
+        const int sw = lm_.superWidth(), sh = lm_.superHeight();
+        const int x = std::clamp(int(v.st[0]), 0, sw - 1), y = std::clamp(int(v.st[1]), 0, sh - 1);
+        const size_t i = size_t(y) * size_t(sw) + size_t(x);
+        Luxel& l = lm_.luxels[i];
+        normalSums_[i] += v.normal;
+        if (l.mapped) return;
+        Vec3 origin = v.xyz;
+        if (lm_.axisNum >= 0) {
+            const float S = float(lm_.superSample);
+            const float s = (float(x) + 0.5f) / S - 0.5f, t = (float(y) + 0.5f) / S - 0.5f;
+            origin = lm_.origin + lm_.vecs[0] * s + lm_.vecs[1] * t;
+            origin[lm_.axisNum] -= (dot(origin, planeNormal) - planeDist) / planeNormal[lm_.axisNum];
+            origin[lm_.axisNum] += planeNormal[lm_.axisNum] < 0.0f ? -lm_.sampleOffset : lm_.sampleOffset;
+        } else {
+            origin += planeNormal * lm_.sampleOffset;
+        }
+        l.origin = origin;
+        l.normal = v.normal;
+        l.mapped = true;
+        l.surfacePoint = v.xyz;
+        l.surfaceNormal = v.normal;
+        l.faceNormal = planeNormal;
+    }
+
+    // The polygon's longest edge in lightmap space (edge i runs from corner i to i + 1), or -1 when
+    // every edge is already within one super luxel.
+    template <size_t N>
+    static int longestEdgeToSplit(const std::array<MapVertex, N>& corners) {
+        int longest = -1;
+        float longestDist = kSplitThreshold;
+        for (size_t i = 0; i < N; ++i) {
+            const float dist = squaredStDistance(corners[i], corners[(i + 1) % N]);
+            if (dist > longestDist) longestDist = dist, longest = int(i);
+        }
+        return longest;
+    }
+
+    // Splits the longest edge until every edge is at most one super luxel, mapping each midpoint.
+    void splitTriangle(const Tri& tri, Vec3 n, float d) {
+        const int longest = longestEdgeToSplit(tri);
+        if (longest < 0) return;
+        const MapVertex mid = midpoint(tri[size_t(longest)], tri[size_t((longest + 1) % 3)]);
+        mapPoint(mid, n, d);
+        Tri first = tri, second = tri;
+        first[size_t(longest)] = mid;
+        second[size_t((longest + 1) % 3)] = mid;
+        splitTriangle(first, n, d);
+        splitTriangle(second, n, d);
+    }
+
+    // The vertices, then either the whole triangle (second pass) or only its axial edges (first
+    // pass, so that edges along the luxel grid claim their luxels before diagonal ones).
+    void mapTriangle(const Tri& tri, bool nonAxial) {
+        Vec3 n;
+        float d;
+        if (!primitivePlane(lm_, tri[0], tri[1], tri[2], n, d)) return;
+        for (const MapVertex& v : tri) mapPoint(v, n, d);
+        if (nonAxial) {
+            splitTriangle(tri, n, d);
+            return;
+        }
+        for (int i = 0; i < 3; ++i) {
+            const MapVertex& a = tri[size_t(i)];
+            const MapVertex& b = tri[size_t((i + 1) % 3)];
+            if (std::fabs(a.st[0] - b.st[0]) <= kAxialEpsilon || std::fabs(a.st[1] - b.st[1]) <= kAxialEpsilon)
+                splitTriangle({a, b, b}, n, d);
+        }
+    }
+
+    void splitQuad(const Quad& q, Vec3 n, float d) {
+        const int longest = longestEdgeToSplit(q);
+        if (longest < 0) return;
+        const int e = longest & 1;  // split both opposite edges of the pair
+        const MapVertex m0 = midpoint(q[size_t(e)], q[size_t(e + 1)]);
+        const MapVertex m1 = midpoint(q[size_t(e + 2)], q[size_t((e + 3) % 4)]);
+        mapPoint(m0, n, d);
+        mapPoint(m1, n, d);
+        if (e == 0) {
+            splitQuad({q[0], m0, m1, q[3]}, n, d);
+            splitQuad({m0, q[1], q[2], m1}, n, d);
+        } else {
+            splitQuad({q[0], q[1], m0, m1}, n, d);
+            splitQuad({m1, m0, q[2], q[3]}, n, d);
+        }
+    }
+
+    bool mapQuad(const Quad& q) {
+        Vec3 n;
+        float d;
+        if (!primitivePlane(lm_, q[0], q[1], q[2], n, d)) return false;
+        if (std::fabs(dot(q[3].xyz, n) - d) > kQuadFlatness) return false;
+        for (const MapVertex& v : q) mapPoint(v, n, d);
+        splitQuad(q, n, d);
+        return true;
+    }
+
+    void mapQuadMesh(const MappingSurface& s) {
+        const int w = s.quadWidth;
+        for (int y = 0; y + 1 < s.quadHeight; ++y)
+            for (int x = 0; x + 1 < w; ++x) {
+                // Corners counter-clockwise from (x, y), the diagonal alternating as q3map2's (x + y) & 1.
+                const size_t pw[5] = {size_t(y * w + x), size_t((y + 1) * w + x), size_t((y + 1) * w + x + 1),
+                                      size_t(y * w + x + 1), size_t(y * w + x)};
+                const size_t r = size_t((x + y) & 1);
+                const MapVertex& a = s.verts[pw[r]];
+                const MapVertex& b = s.verts[pw[r + 1]];
+                const MapVertex& c = s.verts[pw[r + 2]];
+                const MapVertex& e = s.verts[pw[r + 3]];
+                if (mapQuad({a, b, c, e})) continue;
+                for (int nonAxial = 0; nonAxial < 2; ++nonAxial) {
+                    mapTriangle({a, b, c}, nonAxial != 0);
+                    mapTriangle({a, c, e}, nonAxial != 0);
+                }
+            }
+    }
+
+    RawLightmap& lm_;
+    std::vector<Vec3> normalSums_;
+};
+
+}  // namespace
+
+void mapSurfacesOntoLuxels(RawLightmap& lm, std::span<const MappingSurface> surfaces) {
+    lm.luxels.assign(size_t(lm.superWidth()) * size_t(lm.superHeight()), Luxel{});
+    if (lm.luxels.empty()) return;
+    LuxelMapper mapper(lm);
+    for (const MappingSurface& s : surfaces) mapper.mapSurface(s);
+    mapper.finish();
+}
+
+}  // namespace q3::light

@@ -1,0 +1,144 @@
+// Running the reference and our compiler for conformance runs, and the fresh-compile cache.
+#include "conformance_pipeline.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <stdexcept>
+
+#include "file_io.h"
+#include "test_data.h"
+
+namespace q3::conformance {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tail(const std::string& text, size_t lines) {
+    size_t pos = text.size();
+    for (size_t n = 0; n <= lines && pos > 0; ++n) {
+        pos = text.rfind('\n', pos - 1);
+        if (pos == std::string::npos) return text;
+    }
+    return text.substr(pos + 1);
+}
+
+ToolRun run(const std::string& commandLine) {
+    ToolRun r;
+    const auto start = std::chrono::steady_clock::now();
+    r.exitCode = test::runCommand(commandLine, &r.output);
+    r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+}
+
+std::string joined(const std::vector<std::string>& args) {
+    std::string out;
+    for (const std::string& a : args) {
+        out += ' ';
+        out += test::shellQuote(a);
+    }
+    return out;
+}
+
+void runOrThrow(const std::string& what, const std::string& commandLine, const fs::path& logFile) {
+    const ToolRun r = run(commandLine);
+    writeFileAtomic(logFile, r.output);
+    if (r.exitCode != 0)
+        throw std::runtime_error(what + " failed (exit " + std::to_string(r.exitCode) + ", log " + logFile.string() +
+                                 "): " + tail(r.output, 5));
+}
+
+}  // namespace
+
+fs::path referenceBinary(const fs::path& fallback) {
+    const char* env = std::getenv("Q3MAP2_REFERENCE");
+    return env && *env ? fs::path(env) : fallback;
+}
+
+std::string fileHash(const fs::path& path) {
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (uint8_t b : bytes) {
+        h ^= b;
+        h *= 0x100000001b3ull;
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+std::string freshCacheKey(const fs::path& reference, const fs::path& mapSource) {
+    struct stat st {};
+    if (::stat(reference.c_str(), &st) != 0) throw FileError(reference.string() + ": cannot stat the reference q3map2");
+    return mapSource.stem().string() + "-" + std::to_string(static_cast<long long>(st.st_size)) + "-" +
+           std::to_string(static_cast<long long>(st.st_mtim.tv_sec)) + "-" + fileHash(mapSource);
+}
+
+fs::path freshCompile(const fs::path& reference, const fs::path& gameBase, const fs::path& dataCache,
+                      const fs::path& mapSource) {
+    const std::string name = mapSource.stem().string();
+    const fs::path root = dataCache / "conformance" / "fresh";
+    const fs::path final = root / freshCacheKey(reference, mapSource);
+    if (fs::exists(final / "maps" / (name + ".bsp"))) return final;
+
+    std::random_device entropy;
+    const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
+    fs::remove_all(work);
+    fs::create_directories(work / "maps");
+    const fs::path map = work / "maps" / (name + ".map");
+    fs::copy_file(mapSource, map);
+    const std::string common = test::shellQuote(reference) + " -game quake3 -fs_basepath " +
+                               test::shellQuote(gameBase) + " -fs_basegame baseoa -threads 2";
+    try {
+        runOrThrow("reference -bsp -meta on " + mapSource.string(),
+                   "cd " + test::shellQuote(work) + " && " + common + " -bsp -meta " + test::shellQuote(map),
+                   work / "bsp.log");
+        const fs::path bsp = work / "maps" / (name + ".bsp");
+        runOrThrow("reference -vis -fast on " + bsp.string(),
+                   "cd " + test::shellQuote(work) + " && " + common + " -vis -fast " + test::shellQuote(bsp),
+                   work / "vis.log");
+    } catch (...) {
+        fs::remove_all(work);
+        throw;
+    }
+    // Only the inputs of -light stay (the portal file and the like are left out).
+    for (const fs::directory_entry& e : fs::directory_iterator(work / "maps")) {
+        const std::string ext = e.path().extension().string();
+        if (ext != ".bsp" && ext != ".srf" && ext != ".map") fs::remove_all(e.path());
+    }
+    std::error_code ec;
+    fs::rename(work, final, ec);
+    if (ec) fs::remove_all(work);  // another process put its compile there first
+    if (!fs::exists(final / "maps" / (name + ".bsp")))
+        throw std::runtime_error(final.string() + ": the fresh compile of " + mapSource.string() + " is missing");
+    return final;
+}
+
+fs::path stageFresh(const fs::path& fresh, const fs::path& dest, const std::string& mapName) {
+    fs::remove_all(dest);
+    fs::create_directories(dest / "maps");
+    for (const char* ext : {".bsp", ".srf", ".map"}) {
+        const fs::path from = fresh / "maps" / (mapName + ext);
+        if (fs::exists(from)) fs::copy_file(from, dest / "maps" / (mapName + ext));
+    }
+    return dest / "maps" / (mapName + ".bsp");
+}
+
+ToolRun lightWithReference(const fs::path& reference, const fs::path& gameBase, const fs::path& bsp,
+                           const std::vector<std::string>& args, int threads) {
+    return run(test::shellQuote(reference) + " -game quake3 -fs_basepath " + test::shellQuote(gameBase) +
+               " -fs_basegame baseoa -threads " + std::to_string(threads) + " -light" + joined(args) + " " +
+               test::shellQuote(bsp));
+}
+
+ToolRun lightWithOurs(const fs::path& ours, const fs::path& gameBase, const fs::path& bsp,
+                      const std::vector<std::string>& args, int threads) {
+    return run(test::shellQuote(ours) + " -threads " + std::to_string(threads) + " -fs_basepath " +
+               test::shellQuote(gameBase) + " -fs_game baseoa -light" + joined(args) + " " + test::shellQuote(bsp));
+}
+
+}  // namespace q3::conformance

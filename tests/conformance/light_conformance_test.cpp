@@ -1,0 +1,158 @@
+// Light conformance on real maps: the reference q3map2 compiles an oacmp .map (-bsp -meta, then
+// -vis -fast; cached under the data cache), then lights it twice (-threads 2, and -threads 1 for
+// the grid mask) while ours lights a copy of the same fresh BSP; lightcompare's figures must stay
+// within the limits below. Without the reference binary the tests skip (fail when $CI is set).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+
+#include "conformance_pipeline.h"
+#include "reference_fixture.h"
+#include "light_compare.h"
+#include "test_data.h"
+
+namespace q3::conformance {
+namespace {
+namespace fs = std::filesystem;
+
+// The tolerances (the goal) are the defaults; a map whose figures do not meet one yet
+// carries the limit its current figures allow, with the measured value beside it. Limits are
+// one-sided: a figure that moves towards the reference always passes.
+struct Limits {
+    double lightmapRatio = 0.03;          // |total ratio - 1|
+    double lightmapCorrelation = 0.99;    // per-surface means
+    double classRatio = 0.05;             // |class ratio - 1|, every class with surfaces ...
+    std::map<std::string, double> classRatioOf;  // ... unless named here
+    double gridAmbient = 0.03;            // |ratio - 1| over the points the reference repeats
+    double gridDirected = 0.03;
+    double gridAmbientCorrelation = 0.98;   // per-point sums
+    double gridDirectedCorrelation = 0.98;
+    double gridDirection = 0.95;          // share of lit points within 15 degrees of the reference
+    double vertexRatio = 0.05;            // |ratio - 1|
+    double lightmappedCount = 0.02;       // |ours - reference| / reference lightmapped surfaces
+};
+
+struct MapCase {
+    const char* map;
+    std::vector<std::string> options;
+    Limits limits;
+};
+
+// gtest prints the parameter of a failed case; the map and options say it all.
+void PrintTo(const MapCase& c, std::ostream* os) {
+    *os << c.map;
+    for (const std::string& o : c.options) *os << ' ' << o;
+}
+
+std::vector<MapCase> cases() {
+    std::vector<MapCase> out;
+    {
+        // Not met yet (measured at -fast): class shadow 1.052 (goal within 5 %). Met: lightmaps
+        // 1.011, correlation 0.9995, planar 1.017, patch 1.003, near-light 1.009, area-lit 1.011,
+        // vertex colours 1.028, grid 1.025 / 1.023, correlations 0.997 / 0.993, directions 99.2 %.
+        MapCase c{"oacmpdm1", {"-fast"}, {}};
+        c.limits.classRatioOf = {{"shadow", 0.065}};
+        out.push_back(c);
+    }
+    {
+        // Not met yet (measured at -fast): class shadow 1.151 (goal within 5 %); patch 0.9504 sits
+        // at the edge of it. Every other tolerance holds: lightmaps 0.993, correlation 0.9919, grid
+        // 1.002 / 1.008, correlations 0.9994 / 0.9933, directions 99.2 %, vertex colours 1.000.
+        MapCase c{"oacmpdm5", {"-fast"}, {}};
+        c.limits.classRatioOf = {{"shadow", 0.16}, {"patch", 0.06}};
+        out.push_back(c);
+    }
+    {
+        // Sun and sky light: the only map here with a sky-lit class. Not met yet (measured at
+        // -fast): classes patch 1.093 and shadow 1.292 (goal within 5 %), vertex colours 1.613 (goal
+        // within 5 %). Met: lightmaps 1.005, correlation 0.9983, sky-lit 1.008, grid 1.008 / 1.004,
+        // correlations 0.9957 / 0.9936, directions 99.6 %.
+        MapCase c{"oacmpdm4", {"-fast"}, {}};
+        c.limits.classRatioOf = {{"patch", 0.10}, {"shadow", 0.30}};
+        c.limits.vertexRatio = 0.62;
+        out.push_back(c);
+    }
+    return out;
+}
+
+std::string caseName(const ::testing::TestParamInfo<MapCase>& info) {
+    std::string name = info.param.map;
+    for (const std::string& o : info.param.options) {
+        name += '_';
+        name += o.substr(o.find_first_not_of('-'));
+    }
+    return name;
+}
+
+fs::path mapSource(const std::string& name) {
+    for (const fs::path& p : test::oacmpMapSources())
+        if (p.stem() == name) return p;
+    ADD_FAILURE() << "no .map source named " << name;
+    throw std::runtime_error("missing map source " + name);
+}
+
+class LightConformance : public ReferenceTest<MapCase> {};
+
+TEST_P(LightConformance, OursMatchesTheReference) {
+    const MapCase& mc = GetParam();
+    const fs::path& reference = this->reference();
+    const fs::path cache = test::dataCache();
+    const fs::path gameBase = test::openArenaBase();
+    const fs::path source = mapSource(mc.map);
+    const fs::path fresh = freshCompile(reference, gameBase, cache, source);
+
+    const fs::path work = test::tempDir();
+    const fs::path refBsp = stageFresh(fresh, work / "reference", mc.map);
+    const fs::path ref2Bsp = stageFresh(fresh, work / "reference-threads1", mc.map);
+    const fs::path ourBsp = stageFresh(fresh, work / "ours", mc.map);
+    const ToolRun refRun = lightWithReference(reference, gameBase, refBsp, mc.options, 2);
+    ASSERT_EQ(refRun.exitCode, 0) << refRun.output;
+    const ToolRun ref2Run = lightWithReference(reference, gameBase, ref2Bsp, mc.options, 1);
+    ASSERT_EQ(ref2Run.exitCode, 0) << ref2Run.output;
+    const ToolRun ourRun = lightWithOurs(test::q3map2Exe(), gameBase, ourBsp, mc.options, 2);
+    ASSERT_EQ(ourRun.exitCode, 0) << ourRun.output;
+
+    const LitBsp refLit = loadLitBsp(refBsp);
+    const LitBsp ref2Lit = loadLitBsp(ref2Bsp);
+    const LitBsp ourLit = loadLitBsp(ourBsp);
+    const ClassInputs classes = loadClassInputs(refLit.bsp, source, {gameBase}, "baseoa");
+    const Comparison c = compareLitBsps(refLit, ourLit, &ref2Lit, classes);
+    std::cout << toText(c, 20) << "wall: reference " << refRun.wallSeconds << " s, ours " << ourRun.wallSeconds
+              << " s\n";
+
+    const Limits& lim = mc.limits;
+    const LightmapFigures& lm = c.lightmaps;
+    ASSERT_GT(lm.referenceLit, 0);
+    EXPECT_LE(std::abs(lm.oursLit - lm.referenceLit), lim.lightmappedCount * lm.referenceLit)
+        << "lightmapped surfaces: ours " << lm.oursLit << ", reference " << lm.referenceLit;
+    EXPECT_LE(std::abs(lm.ratio - 1), lim.lightmapRatio) << "lightmap total ratio " << lm.ratio;
+    EXPECT_GE(lm.correlation, lim.lightmapCorrelation) << "per-surface correlation";
+    for (const ClassFigures& k : lm.classes) {
+        if (!k.measured || k.surfaces == 0) continue;
+        const auto named = lim.classRatioOf.find(k.name);
+        const double limit = named != lim.classRatioOf.end() ? named->second : lim.classRatio;
+        EXPECT_LE(std::abs(k.ratio - 1), limit) << "class " << k.name << " ratio " << k.ratio;
+    }
+
+    const GridFigures& g = c.grid;
+    ASSERT_TRUE(g.countsMatch) << "grid points: ours " << g.oursPoints << ", reference " << g.referencePoints;
+    ASSERT_TRUE(g.masked);
+    EXPECT_GT(g.agreed.points, g.all.points / 2) << "the two reference runs disagree on most grid points";
+    EXPECT_LE(std::abs(g.agreed.ambientRatio - 1), lim.gridAmbient) << "grid ambient ratio";
+    EXPECT_LE(std::abs(g.agreed.directedRatio - 1), lim.gridDirected) << "grid directed ratio";
+    EXPECT_GE(g.agreed.ambientCorrelation, lim.gridAmbientCorrelation) << "grid ambient correlation";
+    EXPECT_GE(g.agreed.directedCorrelation, lim.gridDirectedCorrelation) << "grid directed correlation";
+    EXPECT_GE(g.agreed.directionFraction, lim.gridDirection) << "grid directions within 15 degrees";
+
+    if (c.vertexes.vertexes > 0) {
+        EXPECT_LE(std::abs(c.vertexes.ratio - 1), lim.vertexRatio) << "vertex colours";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, LightConformance, ::testing::ValuesIn(cases()), caseName);
+
+}  // namespace
+}  // namespace q3::conformance
