@@ -36,7 +36,10 @@
 //
 // Legacy light grid (lump 15): counts must match. With a second reference run of the same input
 // (another thread count), a point is in the mask when both reference runs agree within 2 on each
-// ambient and directed byte, so points where the reference itself is not repeatable do not count.
+// ambient and directed byte, so points where the reference itself is not repeatable do not count,
+// and when the reference wrote something there: q3map2 leaves all 8 bytes of a point zero when its
+// random search for a free position inside solid gives up, which is chance, not light (ours
+// searches the same box in a fixed order; docs/q3map2-differences.md).
 // Over the masked points and over all points: ambient and directed totals (ours / reference), the
 // Pearson correlation of per-point ambient sums and of directed sums, and the fraction of points
 // with reference directed sum >= 30 whose direction (lat/long bytes decoded as ioquake3 does) lies
@@ -170,6 +173,8 @@ struct SurfaceSample {
 SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex);
 GridFigures compareGrids(const std::vector<bsp::GridPoint>& reference, const std::vector<bsp::GridPoint>& ours,
                          const std::vector<bsp::GridPoint>* reference2);
+// Whether the point holds anything (q3map2 leaves all 8 bytes zero where it found no free position).
+bool gridPointPlaced(const bsp::GridPoint& point);
 // Whether both reference runs agree within 2 on every ambient and directed byte of one point.
 bool gridPointsAgree(const bsp::GridPoint& a, const bsp::GridPoint& b);
 // Unit direction of a grid point's lat/long bytes as ioquake3 decodes them.

@@ -59,6 +59,13 @@ Vec3 gridDirection(const bsp::GridPoint& point) {
     return {float(std::cos(lat) * std::sin(lng)), float(std::sin(lat) * std::sin(lng)), float(std::cos(lng))};
 }
 
+bool gridPointPlaced(const bsp::GridPoint& point) {
+    const uint8_t* bytes = reinterpret_cast<const uint8_t*>(&point);
+    for (size_t i = 0; i < sizeof(point); ++i)
+        if (bytes[i] != 0) return true;
+    return false;
+}
+
 bool gridPointsAgree(const bsp::GridPoint& a, const bsp::GridPoint& b) {
     for (int c = 0; c < 3; ++c)
         if (std::abs(int(a.ambient[c]) - int(b.ambient[c])) > kAgreeBytes ||
@@ -78,7 +85,9 @@ GridFigures compareGrids(const std::vector<bsp::GridPoint>& reference, const std
     f.masked = reference2 && reference2->size() == reference.size();
     if (!f.masked) return f;
     std::vector<bool> mask(reference.size());
-    for (size_t i = 0; i < reference.size(); ++i) mask[i] = gridPointsAgree(reference[i], (*reference2)[i]);
+    for (size_t i = 0; i < reference.size(); ++i)
+        mask[i] = gridPointsAgree(reference[i], (*reference2)[i]) && gridPointPlaced(reference[i]) &&
+                  gridPointPlaced((*reference2)[i]);
     f.agreed = gridStats(reference, ours, &mask);
     return f;
 }

@@ -83,6 +83,21 @@ TEST(LightCompareGrid, MaskDropsPointsTheReferenceDoesNotRepeat) {
     EXPECT_LT(f.all.directionFraction, 1.0);
 }
 
+TEST(LightCompareGrid, MaskDropsPointsTheReferenceNeverPlaced) {
+    // Both reference runs agree that point 5 is empty (their random searches out of solid both gave
+    // up); ours placed and lit it. The mask leaves it out; the unmasked figures keep it.
+    std::vector<bsp::GridPoint> ref = referenceGrid();
+    ref[5] = bsp::GridPoint{};
+    EXPECT_FALSE(gridPointPlaced(ref[5]));
+    EXPECT_TRUE(gridPointPlaced(point(0, 0, 128, 0)));  // placed but unlit: kept
+    std::vector<bsp::GridPoint> ours = referenceGrid();
+    const GridFigures f = compareGrids(ref, ours, &ref);
+    EXPECT_EQ(f.agreed.points, 9);
+    EXPECT_NEAR(f.agreed.ambientRatio, 1, 1e-12);
+    EXPECT_EQ(f.all.points, 10);
+    EXPECT_GT(f.all.ambientRatio, 1.0);
+}
+
 TEST(LightCompareGrid, TotalsScaleAndDirectionsNeedEnoughLight) {
     std::vector<bsp::GridPoint> ref = referenceGrid();
     std::vector<bsp::GridPoint> ours = ref;

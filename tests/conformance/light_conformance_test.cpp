@@ -66,6 +66,23 @@ std::vector<MapCase> cases() {
         out.push_back(c);
     }
     {
+        // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights.
+        // Not met yet (measured at -fast): lightmaps 1.073 (goal within 3 %) and every class with
+        // it (planar and area-lit 1.073, near-light and shadow 1.051; goal within 5 %), grid directed
+        // 1.048 (goal within 3 %), ambient 1.029 .. 1.040 and its correlation 0.891 (goal 0.98). The entity lights
+        // alone (-areascale 0) match: lightmaps 1.001, correlation 0.9994. The per-surface
+        // correlation 0.9945 is below the goal too. Met: grid directed correlation 0.985,
+        // directions 97.5 %.
+        MapCase c{"oacmpctf2", {"-fast"}, {}};
+        c.limits.lightmapRatio = 0.085;
+        c.limits.lightmapCorrelation = 0.993;
+        c.limits.classRatio = 0.085;
+        c.limits.gridAmbient = 0.05;  // 1.029 .. 1.040 as the reference's own runs vary
+        c.limits.gridDirected = 0.06;
+        c.limits.gridAmbientCorrelation = 0.88;
+        out.push_back(c);
+    }
+    {
         // Sun and sky light: the only map here with a sky-lit class. Not met yet (measured at
         // -fast): classes patch 1.093 and shadow 1.292 (goal within 5 %), vertex colours 1.613 (goal
         // within 5 %). Met: lightmaps 1.005, correlation 0.9983, sky-lit 1.008, grid 1.008 / 1.004,
@@ -140,7 +157,9 @@ TEST_P(LightConformance, OursMatchesTheReference) {
     const GridFigures& g = c.grid;
     ASSERT_TRUE(g.countsMatch) << "grid points: ours " << g.oursPoints << ", reference " << g.referencePoints;
     ASSERT_TRUE(g.masked);
-    EXPECT_GT(g.agreed.points, g.all.points / 2) << "the two reference runs disagree on most grid points";
+    int placed = 0;  // points the reference wrote anything to (see gridPointPlaced)
+    for (const bsp::GridPoint& p : refLit.bsp.lightGrid) placed += gridPointPlaced(p);
+    EXPECT_GT(g.agreed.points, placed / 2) << "the two reference runs disagree on most grid points they placed";
     EXPECT_LE(std::abs(g.agreed.ambientRatio - 1), lim.gridAmbient) << "grid ambient ratio";
     EXPECT_LE(std::abs(g.agreed.directedRatio - 1), lim.gridDirected) << "grid directed ratio";
     EXPECT_GE(g.agreed.ambientCorrelation, lim.gridAmbientCorrelation) << "grid ambient correlation";

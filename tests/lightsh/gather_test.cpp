@@ -287,9 +287,11 @@ TEST(ShGatherStage, ThreadCountDoesNotChangeOutput) {
 // the gather only adds light (the uniform band of every free probe grows or stays), it adds a
 // visible amount on average, and solid points are refilled.
 // Mean |difference| of the uniform band between -shgatherstep 2 and 1, relative to the mean
-// indirect light, measured at 32 rays per probe on oacmpdm1: 0.15 (the ray noise of
-// the two runs included); the bound leaves room above it.
-constexpr double kMaxStepTwoDifference = 0.25;
+// indirect light, measured at 32 rays per probe on oacmpdm1: 0.31 (the ray noise of the two runs
+// included; 0.15 before the light stage followed q3map2 2.5.17n's vertex light, backsplash and
+// grid occlusion, which changed both the colours the rays read and the direct grid); the bound
+// leaves room above it.
+constexpr double kMaxStepTwoDifference = 0.35;
 
 TEST(ShGatherRealMap, AddsNonNegativeIndirectLight) {
     const std::filesystem::path dir = q3::test::tempDir();

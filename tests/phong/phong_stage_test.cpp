@@ -11,6 +11,7 @@
 #include "common_option_table.h"
 #include "option_parser.h"
 #include "file_io.h"
+#include "shader_info.h"
 #include "light_options.h"
 #include "light_stage.h"
 #include "test_data.h"
@@ -59,8 +60,9 @@ TEST(PhongOptions, BadAnglesAreRefused) {
     EXPECT_EQ(errorOf({"-shadeangle"}), "-shadeangle needs 1 value (-shadeangle <A>)");
 }
 
-// A floor (normal +z) and a wall (normal +x) meeting along x = 0, z = 0, both vertex lit
-// (lightmapNum -3, as -bsp marks vertex-lit surfaces), and a point light in front of the corner.
+// A floor (normal +z) and a wall (normal +x) meeting along x = 0, z = 0, both vertex lit (their
+// shader is surfaceparm pointlight, as the BSP's surface flags say), and a point light in front of
+// the corner.
 constexpr float kLightValue = 20;
 const Vec3 kLightOrigin{40, 8, 10};
 
@@ -71,6 +73,7 @@ bsp::Bsp makeCorner() {
     bsp::Shader sh{};
     std::strcpy(sh.name, "textures/phong/corner");
     sh.contentFlags = 1;
+    sh.surfaceFlags = int32_t(q3::surfaceflags::PointLight);
     b.shaders.push_back(sh);
     q3::test::addQuad(b, {0, 0, 0}, {0, 64, 0}, {64, 0, 0}, 0);  // floor: verts 0..3, vertex 0 at the origin
     q3::test::addQuad(b, {0, 0, 0}, {0, 0, 64}, {0, 64, 0}, 0);  // wall: verts 4..7, vertex 4 at the origin
@@ -86,10 +89,10 @@ bsp::Bsp makeCorner() {
     return b;
 }
 
-// The vertex colour of a point light at a vertex lit with `normal` (sampled 1 unit off the
-// surface along it): photons / d^2 * cos, through the default colour pipeline.
+// The vertex colour of a point light at a vertex lit with `normal` (sampled at the vertex itself,
+// as q3map2's IlluminateVertexes does): photons / d^2 * cos, through the default colour pipeline.
 uint8_t expectedByte(Vec3 xyz, Vec3 normal) {
-    const Vec3 p = xyz + normal;
+    const Vec3 p = xyz;
     const Vec3 toLight = kLightOrigin - p;
     const float d = length(toLight);
     const float add = kLightValue * 7500.0f / (d * d) * (dot(normal, toLight) / d);
