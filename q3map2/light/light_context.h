@@ -56,6 +56,7 @@ struct LightContext {
     // Scene.
     std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
+    std::vector<std::vector<int>> surfaceClusters;  // per BSP surface: clusters of the leafs listing it
     std::vector<int> receiveShadows;     // per BSP surface: shadow group it receives from (0 = none)
     std::vector<Vec3> shadedNormals;     // per draw vertex; empty = the BSP's normals (phong.h)
     std::unique_ptr<ShaderAlbedoSet> albedo;  // textures as reflectors (-bounce, -shgather); shaderAlbedo()

@@ -8,6 +8,7 @@
 #include "light_context.h"
 #include "lightmap_layout.h"
 #include "light_text.h"
+#include "surface_lighting.h"
 #include "patch.h"
 
 namespace q3::light {
@@ -140,6 +141,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
     ctx.receiveShadows.assign(bsp.surfaces.size(), 1);
     for (size_t s = 0; s < surfaceFlags.size(); ++s) ctx.receiveShadows[s] = surfaceFlags[s].receive;
     ctx.surfaceOffsets = surfaceOffset;
+    ctx.surfaceClusters = surfaceClusterLists(bsp);
     ctx.surfaces.clear();
     ctx.surfaces.resize(bsp.surfaces.size());
     for (size_t i = 0; i < bsp.surfaces.size(); ++i) {

@@ -101,7 +101,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
             if (shader.noVertexLight) continue;
             const Vec3 offset = ctx.surfaceOffsets[i];
             const LightingEnv surfaceEnv = receiverLightingEnv(ctx, env, static_cast<int>(i));
-            const std::vector<int> clusters = surfaceClusters(bsp, static_cast<int>(i));
+            const std::vector<int>& clusters = ctx.surfaceClusters[i];
             // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each
             // bounce). Lights whose envelope misses every position the search may try are skipped.
             Bounds reach;

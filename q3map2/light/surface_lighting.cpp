@@ -81,7 +81,7 @@ struct LuxelSampler {
     const RawLightmap& raw;
     Vec3 offset;
     bool twoSided;
-    std::vector<int> clusters;  // the surface's clusters: a sample point must see one of them
+    std::span<const int> clusters;  // the surface's clusters: a sample point must see one of them
     // Planar lightmaps: the in-plane nudges of every luxel, half a super luxel step.
     std::array<Vec3, 8> planarNudges =
         luxelNudges(raw.vecs[0] / float(std::max(1, raw.superSample)), raw.vecs[1] / float(std::max(1, raw.superSample)));
@@ -355,15 +355,19 @@ void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, std::vec
 
 }  // namespace
 
-std::vector<int> surfaceClusters(const bsp::Bsp& bsp, int surfaceNum) {
-    std::vector<int> out;
+std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp) {
+    std::vector<std::vector<int>> out(bsp.surfaces.size());
     for (const bsp::Leaf& leaf : bsp.leafs)
         for (int k = 0; k < leaf.numLeafSurfaces; ++k) {
             const size_t i = size_t(leaf.firstLeafSurface) + size_t(k);
-            if (i < bsp.leafSurfaces.size() && bsp.leafSurfaces[i] == surfaceNum) out.push_back(leaf.cluster);
+            if (i >= bsp.leafSurfaces.size()) continue;
+            const int32_t surface = bsp.leafSurfaces[i];
+            if (surface >= 0 && size_t(surface) < out.size()) out[size_t(surface)].push_back(leaf.cluster);
         }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    for (std::vector<int>& clusters : out) {
+        std::sort(clusters.begin(), clusters.end());
+        clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
+    }
     return out;
 }
 
@@ -429,7 +433,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
 
     const int w = raw.superWidth(), h = raw.superHeight();
     const Vec3 offset = ctx.surfaceOffsets[static_cast<size_t>(surfaceNum)];
-    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, surfaceClusters(ctx.bsp, surfaceNum)};
+    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, ctx.surfaceClusters[static_cast<size_t>(surfaceNum)]};
 
     // Sample points of every super luxel.
     const Vec3 ambient = pass.direct ? ctx.world.ambient : Vec3{};

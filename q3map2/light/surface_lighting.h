@@ -52,8 +52,9 @@ struct SurfaceLight {
     LightmapLayer& layerFor(int style);  // creates the layer (zero light) when missing
 };
 
-// The clusters of the leafs whose surface lists hold `surfaceNum` (sorted, unique).
-std::vector<int> surfaceClusters(const bsp::Bsp& bsp, int surfaceNum);
+// For every surface, the clusters of the leafs whose surface lists hold it (sorted, unique), from
+// one walk over the leafs.
+std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp);
 // q3map2 ClusterForPointExtFilter on a point's cluster: kept when it is one of `clusters` or sees
 // one of them (or when `clusters` is empty), else -1.
 int clusterSeenBySurface(const BspTree& tree, int cluster, std::span<const int> clusters);
