@@ -179,7 +179,8 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
     lm.correlation = pearson(refMeans, ourMeans);
     lm.medianReference = medianOf(refMeans);
 
-    // Classes over reference-lightmapped surfaces.
+    // Classes over reference-lightmapped surfaces; with a second reference run, over the ones it
+    // repeats (the reference's threads race on some surfaces, and a class must not follow that).
     std::vector<bool> areaLit, skyLit;
     if (classes.shadersKnown) {
         areaLit = nearAreaLights(refBsp, shapes, classes.shaderEmitsArea);
@@ -213,6 +214,7 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
         if (rule.measured)
             for (int s = 0; s < count; ++s) {
                 if (!surfaces[s].referenceLit || !rule.member(s)) continue;
+                if (reference2 && !surfaces[s].referenceRepeats) continue;
                 ++c.surfaces;
                 c.referenceSum += surfaces[s].referenceMean;
                 c.oursSum += surfaces[s].oursMean;

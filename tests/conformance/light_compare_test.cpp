@@ -318,6 +318,9 @@ TEST(LightCompare, SurfacesTheReferenceDoesNotRepeatAreSetApart) {
     EXPECT_EQ(c.lightmaps.worst[0].surface, 2);
     EXPECT_FALSE(c.lightmaps.worst[0].referenceRepeats);
     EXPECT_NE(toText(c).find(" ~"), std::string::npos);
+    // Classes leave surface 2 out: planar holds surfaces 0 and 1 only.
+    EXPECT_EQ(classOf(c, "planar").surfaces, 2);
+    EXPECT_NEAR(classRatio(c, "planar"), (40.0 + 82) / (40 + 80), 1e-6);
     const Comparison without = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{});
     EXPECT_EQ(without.lightmaps.repeatable, -1);
 }
