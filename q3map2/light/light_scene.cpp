@@ -55,8 +55,11 @@ SceneSurface patchGeometry(const bsp::Bsp& bsp, const bsp::Surface& s, Vec3 offs
     if (!patch::isValidGrid(grid)) return out;
     patch::PatchMesh mesh = recordedCurve > 0 ? patch::tessellateForLighting(grid, recordedCurve)
                                               : patch::tessellateForLighting(grid);
+    out.meshWidth = mesh.width;
+    out.meshHeight = mesh.height;
     for (const patch::PatchVertex& v : mesh.verts) {
         out.xyz.push_back(v.xyz);
+        out.normals.push_back(v.normal);
         out.st.push_back(v.st[0]);
         out.st.push_back(v.st[1]);
     }
@@ -198,6 +201,9 @@ void createLights(LightContext& ctx, Log& log) {
             EmitterGeometry g;
             g.xyz = s.xyz;
             g.triangles = s.triangles;
+            g.normals = s.normals;
+            g.meshWidth = s.meshWidth;
+            g.meshHeight = s.meshHeight;
             return g;
         });
     ctx.lights.insert(ctx.lights.end(), shaderLights.begin(), shaderLights.end());
@@ -222,16 +228,19 @@ int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights) {
             kept.push_back(std::move(light));
             continue;
         }
-        // q3map2 SetupEnvelopes: LIGHT_EPSILON 0.125, then nudges of 0, +2, -2, +4 units per axis
-        // (x outermost); the first free position is kept and the light moves there.
+        // q3map2 SetupEnvelopes: LIGHT_EPSILON 0.125; a light in solid tries the 64 nudges of
+        // 0, 0, +2, -2 units per axis (x outermost), each from where the last free one moved it,
+        // without stopping at the first free one: the light's cluster is the last try's, so a
+        // light whose last try lands in solid is removed even when an earlier one was free.
         constexpr float kLightEpsilon = 0.125f;
-        constexpr float kSteps[4] = {0.0f, 2.0f, -2.0f, 4.0f};
+        constexpr float kSteps[4] = {0.0f, 0.0f, 2.0f, -2.0f};
         int cluster = ctx.tree->clusterForPointExt(light.origin, kLightEpsilon);
-        for (int i = 0; cluster < 0 && i < 64; ++i) {
-            const Vec3 nudged = light.origin + Vec3{kSteps[i / 16], kSteps[(i / 4) % 4], kSteps[i % 4]};
-            cluster = ctx.tree->clusterForPointExt(nudged, kLightEpsilon);
-            if (cluster >= 0) light.origin = nudged;
-        }
+        if (cluster < 0)
+            for (int i = 0; i < 64; ++i) {
+                const Vec3 nudged = light.origin + Vec3{kSteps[i / 16], kSteps[(i / 4) % 4], kSteps[i % 4]};
+                cluster = ctx.tree->clusterForPointExt(nudged, kLightEpsilon);
+                if (cluster >= 0) light.origin = nudged;
+            }
         if (cluster < 0) {
             ++inSolid;
             continue;

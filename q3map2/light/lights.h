@@ -209,6 +209,7 @@ struct EmitterGeometry {
     std::vector<Vec3> xyz;
     std::vector<Vec3> normals;
     std::vector<uint32_t> triangles;  // 3 indices per triangle
+    int meshWidth = 0, meshHeight = 0;  // > 0: a patch mesh, xyz row-major, emitting by quads
 };
 
 // Area lights of one emitting triangle list, chopped at `subdivide` world units.

@@ -105,10 +105,46 @@ Vec3 LightImage::averageColor() const {
     return {static_cast<float>(sum[0] * scale), static_cast<float>(sum[1] * scale), static_cast<float>(sum[2] * scale)};
 }
 
+namespace {
+
+// q3map2 RadLightForPatch: each quad of the lighting mesh emits as one four-corner winding, its
+// corners starting at alternating ones ((x + y) & 1) as the mesh's diagonals do. q3map2 means to
+// split non-planar quads into triangles, but its planarity test measures a corner that defines the
+// plane, and a quad whose first corners coincide (patches with a collapsed edge) gives a NaN plane
+// that passes too: every quad goes whole. Measured against the binary: 126 area lights (not 252)
+// on oacmpdm6's curved white_glowing_500 emitters, 416 on oacmpdm1's collapsed-edge fixtures.
+void appendPatchAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const LightingShader& shader,
+                           const LightScales& scales, float subdivide) {
+    const int w = g.meshWidth, h = g.meshHeight;
+    const bool withNormals = g.normals.size() == g.xyz.size();
+    for (int y = 0; y + 1 < h; ++y)
+        for (int x = 0; x + 1 < w; ++x) {
+            const size_t corners[5] = {size_t(x + y * w), size_t(x + (y + 1) * w), size_t(x + 1 + (y + 1) * w),
+                                       size_t(x + 1 + y * w), size_t(x + y * w)};
+            const int r = (x + y) & 1;
+            Winding quad;
+            Vec3 normal;
+            for (int k = 0; k < 4; ++k) {
+                quad.push_back(g.xyz[corners[r + k]]);
+                if (withNormals) normal = normal + g.normals[corners[r + k]];
+            }
+            if (length(normal) <= 0) normal = cross(quad[2] - quad[0], quad[1] - quad[0]);
+            if (length(normal) <= 0) continue;
+            AreaLightContext ctx{shader, scales, normalize(normal), subdivide, out};
+            emitAreaLight(ctx, quad);
+        }
+}
+
+}  // namespace
+
 void appendAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const LightingShader& shader,
                       const LightScales& scales) {
     if (shader.surfaceLight <= 0) return;
     const float subdivide = shader.lightSubdivide > 0 ? shader.lightSubdivide : kDefaultLightSubdivide;
+    if (g.meshWidth > 1 && g.meshHeight > 1 && g.xyz.size() == size_t(g.meshWidth) * size_t(g.meshHeight)) {
+        appendPatchAreaLights(out, g, shader, scales, subdivide);
+        return;
+    }
     for (size_t i = 0; i + 2 < g.triangles.size(); i += 3) {
         Winding w{g.xyz[g.triangles[i]], g.xyz[g.triangles[i + 1]], g.xyz[g.triangles[i + 2]]};
         Vec3 normal;

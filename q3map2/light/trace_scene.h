@@ -33,6 +33,8 @@ struct SceneSurface {
     std::vector<float> st;             // 2 per vertex (texture coordinates), may be empty
     std::vector<uint32_t> triangles;   // 3 indices per triangle
     bool isPatch = false;
+    int meshWidth = 0, meshHeight = 0;  // patches: xyz is this row-major vertex grid ...
+    std::vector<Vec3> normals;          // ... with these (interpolated) vertex normals
     int castShadows = 1;               // shadow group (.srf castShadows, _castShadows); 0 = casts nothing
     int skyIndex = -1;                 // sky index of its shader (only meaningful for sky surfaces)
 };

@@ -314,6 +314,34 @@ TEST(SunLights, SkyDomeColoursFromSkyBox) {
     EXPECT_EQ(plain[0].color, (Vec3{1, 0.5f, 0.5f}));
 }
 
+TEST(SurfaceLights, PatchMeshEmitsOneWindingPerQuadEvenWithACollapsedEdge) {
+    // A 2 x 3 lighting mesh whose first column collapses to one point (a fan-shaped patch): q3map2
+    // emits every quad whole, the collapsed ones as three-sided quads, never as split triangles.
+    LightingShader sh;
+    sh.surfaceLight = 100;
+    sh.backsplashSet = true;  // q3map_backsplash 0 0: no backsplash copies
+    sh.backsplashFraction = 0;
+    sh.backsplashDistance = 0;
+    EmitterGeometry g;
+    g.meshWidth = 2;
+    g.meshHeight = 3;
+    g.xyz = {{0, 0, 0}, {64, 0, 0}, {0, 0, 0}, {64, 64, 0}, {0, 0, 0}, {0, 64, 0}};
+    g.normals.assign(6, Vec3{0, 0, 1});
+    std::vector<Light> out;
+    appendAreaLights(out, g, sh, {});
+    ASSERT_EQ(out.size(), 2u);
+    float area = 0;
+    for (const Light& l : out) {
+        EXPECT_EQ(l.winding.size(), 4u);
+        EXPECT_EQ(l.normal, (Vec3{0, 0, 1}));
+        area += l.photons / (100.0f * 0.25f);
+    }
+    EXPECT_NEAR(area, 64 * 64 / 2.0f + 64 * 64 / 2.0f, 0.5f);
+    // The second row starts at its other corner ((x + y) & 1): its winding begins at row 2.
+    EXPECT_EQ(out[1].winding[0], (Vec3{0, 0, 0}));
+    EXPECT_EQ(out[1].winding[1], (Vec3{0, 64, 0}));
+}
+
 TEST(SurfaceLights, AreaLightsChoppedWithBacksplash) {
     LightingShader sh;
     sh.surfaceLight = 100;
