@@ -4,6 +4,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -48,3 +49,59 @@ def load_average():
             return " ".join(f.read().split()[:3])
     except OSError:
         return "?"
+
+
+def fnv1a64(path):
+    h = 0xcbf29ce484222325
+    with open(path, "rb") as f:
+        data = f.read()
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return "%016x" % h
+
+
+def fresh_compile(reference, game_base, cache, map_source, prog):
+    """The reference's -bsp -meta and -vis -fast of a .map, cached under <cache>/conformance/fresh/
+    (keyed by the reference binary's size and mtime and the .map's FNV-1a hash, the same cache the
+    conformance tests use): the folder holding maps/NAME.bsp, .srf and .map. A failure ends the
+    program with a message naming `prog`."""
+    name = os.path.splitext(os.path.basename(map_source))[0]
+    st = os.stat(reference)
+    key = "%s-%d-%d-%s" % (name, st.st_size, int(st.st_mtime), fnv1a64(map_source))
+    root = os.path.join(cache, "conformance", "fresh")
+    final = os.path.join(root, key)
+    if os.path.exists(os.path.join(final, "maps", name + ".bsp")):
+        return final
+    os.makedirs(root, exist_ok=True)
+    work = tempfile.mkdtemp(prefix=".tmp-%s-" % name, dir=root)
+    maps = os.path.join(work, "maps")
+    os.makedirs(maps)
+    shutil.copyfile(map_source, os.path.join(maps, name + ".map"))
+    common = [reference, "-game", "quake3", "-fs_basepath", game_base, "-fs_basegame", "baseoa", "-threads", "2"]
+    for step, args, target, log in (("-bsp", ["-meta"], name + ".map", "bsp.log"),
+                                     ("-vis", ["-fast"], name + ".bsp", "vis.log")):
+        with open(os.path.join(work, log), "w") as out:
+            code = subprocess.call(common + [step] + args + [os.path.join(maps, target)], cwd=work,
+                                   stdout=out, stderr=subprocess.STDOUT)
+        if code != 0:
+            shutil.rmtree(work, ignore_errors=True)
+            sys.exit("%s: reference %s on %s failed (exit %d)" % (prog, step, map_source, code))
+    for f in os.listdir(maps):
+        if os.path.splitext(f)[1] not in (".bsp", ".srf", ".map"):
+            os.remove(os.path.join(maps, f))
+    try:
+        os.rename(work, final)
+    except OSError:  # another run put its compile there first
+        shutil.rmtree(work, ignore_errors=True)
+    return final
+
+
+def stage(fresh, dest, name):
+    """A copy of the fresh compile's files in dest/maps/ (dest emptied first); the BSP's path."""
+    shutil.rmtree(dest, ignore_errors=True)
+    os.makedirs(os.path.join(dest, "maps"))
+    for ext in (".bsp", ".srf", ".map"):
+        src = os.path.join(fresh, "maps", name + ext)
+        if os.path.exists(src):
+            shutil.copyfile(src, os.path.join(dest, "maps", name + ext))
+    return os.path.join(dest, "maps", name + ".bsp")
