@@ -134,10 +134,12 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
     if (reference2) checkSameInput(reference, *reference2);
     std::vector<double> refMeans, ourMeans, repeatRefMeans, repeatOurMeans;
     double repeatRefTotal = 0, repeatOurTotal = 0;
+    const detail::SolidTest solidTest(refBsp);
+    const detail::SolidTest* solid = options.leaveOutHidden ? &solidTest : nullptr;
     for (int s = 0; s < count; ++s) {
         SurfaceFigures& f = surfaces[s];
-        const SurfaceSample r = sampleSurface(reference, s);
-        const SurfaceSample o = sampleSurface(ours, s);
+        const SurfaceSample r = sampleSurface(reference, s, solid);
+        const SurfaceSample o = sampleSurface(ours, s, solid);
         f.surface = s;
         f.shader = shaderName(refBsp, refBsp.surfaces[s].shaderNum);
         f.surfaceType = refBsp.surfaces[s].surfaceType;
@@ -148,7 +150,7 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
         f.oursMean = o.mean;
         f.mismatch = std::fabs(o.mean - r.mean) / (r.mean + 8) * std::min(1.0, std::sqrt(f.area / kFullWeightArea));
         if (reference2) {
-            const SurfaceSample r2 = sampleSurface(*reference2, s);
+            const SurfaceSample r2 = sampleSurface(*reference2, s, solid);
             f.referenceRepeats =
                 r2.lit == r.lit && std::fabs(r2.mean - r.mean) <= std::max(kRepeatUnits, kRepeatFraction * r.mean);
         }
@@ -159,6 +161,11 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
         lm.referenceOnly += r.lit && !o.lit;
         lm.oursOnly += o.lit && !r.lit;
         if (!r.lit) continue;
+        if (r.hidden) {
+            ++lm.hiddenSurfaces;
+            f.hidden = true;
+            continue;
+        }
         lm.referenceTotal += r.mean;
         lm.oursTotal += o.mean;  // 0 when ours did not lightmap it
         refMeans.push_back(r.mean);
@@ -213,11 +220,11 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
         c.measured = rule.measured;
         if (rule.measured)
             for (int s = 0; s < count; ++s) {
-                if (!surfaces[s].referenceLit || !rule.member(s)) continue;
+                if (!surfaces[s].referenceLit || surfaces[s].hidden || !rule.member(s)) continue;
                 if (reference2 && !surfaces[s].referenceRepeats) continue;
                 ++c.surfaces;
-                c.referenceSum += surfaces[s].referenceMean;
-                c.oursSum += surfaces[s].oursMean;
+                c.referenceSum += surfaces[s].referenceMean * surfaces[s].area;
+                c.oursSum += surfaces[s].oursMean * surfaces[s].area;
             }
         c.ratio = rule.measured ? ratioOf(c.oursSum, c.referenceSum) : kNaN;
         lm.classes.push_back(c);
@@ -231,7 +238,7 @@ Comparison compareLitBsps(const LitBsp& reference, const LitBsp& ours, const Lit
     // then by relative difference.
     std::vector<SurfaceFigures> ranked;
     for (const SurfaceFigures& f : surfaces)
-        if (f.referenceLit || f.oursLit) ranked.push_back(f);
+        if ((f.referenceLit || f.oursLit) && !f.hidden) ranked.push_back(f);
     std::stable_sort(ranked.begin(), ranked.end(), [](const SurfaceFigures& a, const SurfaceFigures& b) {
         const bool oneSidedA = a.referenceLit != a.oursLit, oneSidedB = b.referenceLit != b.oursLit;
         if (oneSidedA != oneSidedB) return oneSidedA;

@@ -13,10 +13,16 @@
 // so missing lightmaps pull the ratio down; one-sided counts are reported both ways. Given a second
 // reference run, a surface "repeats" when both reference means agree within 2 luminance units or
 // 5 %; the ratio and correlation are given again over those surfaces alone.
+// Texels that face a wall flush against them (the point 1 unit out along the normal lies in a
+// solid leaf or an opaque brush of the reference BSP) are left out of the means, and surfaces made
+// only of them out of every figure (CompareOptions::leaveOutHidden): no player sees them, and
+// q3map2's values there change between its own runs.
 // Worst surfaces are ranked by |ours - ref| / (ref + 8) (relative, near-black damped) times
 // min(1, sqrt(area / 4096)) so that slivers smaller than 64x64 units rank lower.
 //
-// Classes of reference-lightmapped surfaces (ratio of summed means, ours / reference):
+// Classes of reference-lightmapped surfaces (ratio of area-weighted summed means, ours /
+// reference: the light on the class's area, so a sliver smaller than a luxel weighs as little as
+// it shows):
 //   planar, patch, soup  surface type MST_PLANAR, MST_PATCH, MST_TRIANGLE_SOUP;
 //   near-light   the surface's bounds lie within 128 units of a light entity origin (the .map's
 //                entities whose classname starts with "light"; without a .map, the reference
@@ -96,7 +102,7 @@ struct ClassFigures {
     std::string name;
     bool measured = false;
     int surfaces = 0;
-    double referenceSum = 0, oursSum = 0;
+    double referenceSum = 0, oursSum = 0;  // sums of mean x area
     double ratio = 0;  // NaN when the class is empty or not measured
 };
 
@@ -108,6 +114,7 @@ struct SurfaceFigures {
     bool referenceLit = false, oursLit = false;
     double referenceMean = 0, oursMean = 0;
     bool referenceRepeats = true;  // false when the second reference run disagrees (see above)
+    bool hidden = false;           // entirely against solid (CompareOptions::leaveOutHidden)
     double mismatch = 0;           // ranking score (see above)
 };
 
@@ -120,6 +127,7 @@ struct LightmapFigures {
     double correlation = 0;  // Pearson over reference-lit surfaces; NaN when undefined
     double medianReference = 0;
     int repeatable = -1;  // reference-lit surfaces the second run repeats; -1 without one
+    int hiddenSurfaces = 0;  // reference-lit surfaces entirely against solid, left out of every figure
     double repeatableRatio = 0, repeatableCorrelation = 0;
     std::vector<ClassFigures> classes;  // planar, patch, soup, near-light, shadow, area-lit, sky-lit
     std::vector<SurfaceFigures> worst;  // highest mismatch first (including one-sided surfaces)
@@ -157,6 +165,9 @@ struct Comparison {
 
 struct CompareOptions {
     int worstCount = 25;  // surfaces kept in LightmapFigures::worst
+    // Leave out texels that face a wall flush against them (see sampleSurface), and surfaces made
+    // only of such texels: nobody sees them, and q3map2's values there change from run to run.
+    bool leaveOutHidden = true;
 };
 
 // Throws BspError naming `ours` when it was not lit from the same input as `reference`
@@ -169,8 +180,16 @@ struct SurfaceSample {
     bool lit = false;  // lightmapNum >= 0 and at least one sample inside a triangle
     double mean = 0;
     double area = 0;
+    bool hidden = false;           // with `solid`: every sample lies in solid (mean and area 0)
+    double visibleFraction = 1;    // with `solid`: the share of samples outside solid
 };
-SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex);
+namespace detail {
+class SolidTest;
+}
+// With `solid`, samples whose point 1 unit out along the surface normal lies in solid are left
+// out: that texel faces a wall flush against it, and no player sees it. Patches are sampled on
+// their control grid, which is not the surface, so they are always counted whole.
+SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex, const detail::SolidTest* solid = nullptr);
 GridFigures compareGrids(const std::vector<bsp::GridPoint>& reference, const std::vector<bsp::GridPoint>& ours,
                          const std::vector<bsp::GridPoint>* reference2);
 // Whether the point holds anything (q3map2 leaves all 8 bytes zero where it found no free position).

@@ -34,4 +34,15 @@ float pointBoundsDistance(Vec3 p, const Bounds& b);
 // meets an opaque drawn surface whose shader is a sky (see light_compare.h, sky-lit).
 std::vector<bool> skyLitSurfaces(const bsp::Bsp& bsp, const std::vector<bool>& shaderIsSky);
 
+// Whether a point lies in a solid leaf of the BSP tree or inside an opaque (CONTENTS_SOLID) brush
+// of its leaf. A BSP without nodes has no solid.
+class SolidTest {
+public:
+    explicit SolidTest(const bsp::Bsp& bsp);
+    bool inSolid(Vec3 point) const;
+
+private:
+    const bsp::Bsp& bsp_;
+};
+
 }  // namespace q3::conformance::detail

@@ -75,7 +75,7 @@ std::string toJson(const Comparison& c) {
       << ", \"referenceOnly\": " << lm.referenceOnly << ", \"oursOnly\": " << lm.oursOnly
       << ",\n    \"referenceTotal\": " << number(lm.referenceTotal) << ", \"oursTotal\": " << number(lm.oursTotal)
       << ", \"ratio\": " << number(lm.ratio) << ", \"correlation\": " << number(lm.correlation)
-      << ", \"medianReference\": " << number(lm.medianReference) << ",\n    \"repeatable\": " << lm.repeatable
+      << ", \"medianReference\": " << number(lm.medianReference) << ",\n    \"repeatable\": " << lm.repeatable << ", \"hiddenSurfaces\": " << lm.hiddenSurfaces
       << ", \"repeatableRatio\": " << number(lm.repeatable >= 0 ? lm.repeatableRatio : NAN)
       << ", \"repeatableCorrelation\": " << number(lm.repeatable >= 0 ? lm.repeatableCorrelation : NAN)
       << ",\n    \"classes\": [";
@@ -120,6 +120,8 @@ std::string toText(const Comparison& c, int worstShown) {
       << lm.referenceOnly << ", ours only " << lm.oursOnly << "\n";
     o << "  total ratio " << ratioText(lm.ratio) << ", per-surface correlation " << fixed(lm.correlation)
       << ", median reference mean " << fixed(lm.medianReference, 1) << "\n";
+    if (lm.hiddenSurfaces > 0)
+        o << "  " << lm.hiddenSurfaces << " surfaces lie entirely against solid and are left out (texels against solid are, everywhere)\n";
     if (lm.repeatable >= 0)
         o << "  over the " << lm.repeatable << " surfaces the second reference run repeats: ratio "
           << ratioText(lm.repeatableRatio) << ", correlation " << fixed(lm.repeatableCorrelation) << "\n";

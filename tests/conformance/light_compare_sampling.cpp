@@ -98,7 +98,7 @@ LitBsp loadLitBsp(const fs::path& path) {
     return lit;
 }
 
-SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex) {
+SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex, const detail::SolidTest* solid) {
     SurfaceSample out;
     const bsp::Surface& surface = lit.bsp.surfaces[surfaceIndex];
     if (surface.lightmapNum < 0) return out;
@@ -107,8 +107,10 @@ SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex) {
                             std::to_string(surface.lightmapNum) + " of " + std::to_string(lit.pages.size()));
     const LuminancePage& page = lit.pages[surface.lightmapNum];
 
+    if (surface.surfaceType == bsp::MST_PATCH) solid = nullptr;
     double weighted = 0, areaSum = 0, unweighted = 0;
     int sampledTriangles = 0;
+    int64_t samplesTaken = 0, samplesVisible = 0;
     for (const std::array<int, 3>& tri : detail::surfaceTriangles(lit.bsp, surfaceIndex)) {
         const bsp::DrawVert* v[3] = {&lit.bsp.drawVerts[tri[0]], &lit.bsp.drawVerts[tri[1]], &lit.bsp.drawVerts[tri[2]]};
         float st[3][2];
@@ -128,9 +130,19 @@ SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex) {
         }
         const int n = std::clamp(int(std::ceil(longest * 2)), 1, 64);
         double sum = 0;
-        int count = 0;
+        int count = 0, taken = 0;
+        const Vec3 p[3] = {detail::vertexPosition(lit.bsp, tri[0]), detail::vertexPosition(lit.bsp, tri[1]),
+                           detail::vertexPosition(lit.bsp, tri[2])};
+        const Vec3 vn[3] = {Vec3::fromArray(v[0]->normal), Vec3::fromArray(v[1]->normal), Vec3::fromArray(v[2]->normal)};
         auto sampleAt = [&](float a, float b) {  // barycentric weights of vertexes 1 and 2
             const float c = 1 - a - b;
+            ++taken;
+            if (solid) {
+                Vec3 normal = vn[0] * c + vn[1] * a + vn[2] * b;
+                if (length(normal) <= 0) normal = cross(p[2] - p[0], p[1] - p[0]);  // Quake winding order
+                if (length(normal) > 0 && solid->inSolid(p[0] * c + p[1] * a + p[2] * b + normalize(normal)))
+                    return;
+            }
             sum += sampleBilinear(page, c * st[0][0] + a * st[1][0] + b * st[2][0], c * st[0][1] + a * st[1][1] + b * st[2][1]);
             ++count;
         };
@@ -140,17 +152,23 @@ SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex) {
                 sampleAt((i + 1.0f / 3) / n, (j + 1.0f / 3) / n);
                 if (i + j < n - 1) sampleAt((i + 2.0f / 3) / n, (j + 2.0f / 3) / n);
             }
+        samplesTaken += taken;
+        samplesVisible += count;
+        if (count == 0) continue;  // the whole triangle lies against solid
         const double mean = sum / count;
-        const double area = detail::triangleArea(detail::vertexPosition(lit.bsp, tri[0]),
-                                                 detail::vertexPosition(lit.bsp, tri[1]),
-                                                 detail::vertexPosition(lit.bsp, tri[2]));
+        const double area = detail::triangleArea(p[0], p[1], p[2]) * count / taken;
         weighted += mean * area;
         areaSum += area;
         unweighted += mean;
         ++sampledTriangles;
     }
-    if (sampledTriangles == 0) return out;
+    if (samplesTaken == 0) return out;
     out.lit = true;
+    out.visibleFraction = double(samplesVisible) / double(samplesTaken);
+    if (sampledTriangles == 0) {
+        out.hidden = true;
+        return out;
+    }
     out.area = areaSum;
     // Degenerate (zero-area) surfaces still get a mean: the plain mean over their triangles.
     out.mean = areaSum > 0 ? weighted / areaSum : unweighted / sampledTriangles;

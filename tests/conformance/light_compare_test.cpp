@@ -298,7 +298,7 @@ TEST(LightCompare, SkyLitSurfacesSeeASkySurfaceStraightUp) {
     classes.skyEmits = true;
     const Comparison c = compareLitBsps(ref.lit("ref"), ref.lit("ours"), nullptr, classes);
     EXPECT_EQ(classOf(c, "sky-lit").surfaces, 1);  // surface 1; surface 0 is under the roof
-    EXPECT_NEAR(classOf(c, "sky-lit").referenceSum, 80, 1e-3);
+    EXPECT_NEAR(classOf(c, "sky-lit").referenceSum, 80.0 * 64 * 64, 1e-3);  // mean x area
 }
 
 TEST(LightCompare, SurfacesTheReferenceDoesNotRepeatAreSetApart) {
@@ -323,6 +323,80 @@ TEST(LightCompare, SurfacesTheReferenceDoesNotRepeatAreSetApart) {
     EXPECT_NEAR(classRatio(c, "planar"), (40.0 + 82) / (40 + 80), 1e-6);
     const Comparison without = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{});
     EXPECT_EQ(without.lightmaps.repeatable, -1);
+}
+
+TEST(LightCompare, ClassesWeighSurfacesByArea) {
+    // A 2x2-unit sliver three times too bright beside a 64x64 wall that matches: the planar class
+    // moves by the sliver's share of the area, not by a third.
+    Scene ref;
+    addShader(ref, "textures/test/wall");
+    addQuad(ref, {0, 0, 0}, 64, 0, 0, 0);
+    addQuad(ref, {0, 200, 0}, 2, 0, 1, 0);
+    ref.paint(0, 0, 0, 40, 40, 40);
+    ref.paint(0, 1, 0, 40, 40, 40);
+    Scene ours = ref;
+    ours.paint(0, 1, 0, 120, 120, 120);
+    const Comparison c = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{});
+    EXPECT_NEAR(classRatio(c, "planar"), (40.0 * 4096 + 120.0 * 4) / (40.0 * 4096 + 40.0 * 4), 1e-6);
+    EXPECT_NEAR(c.lightmaps.ratio, (40.0 + 120) / (40 + 40), 1e-6);  // the total stays per surface
+}
+
+// A tree of one node, the plane z = 32: above it open space (cluster 0), below it a solid leaf.
+void addSolidBelow(Scene& s, float height) {
+    s.bsp.planes.push_back(bsp::Plane{{0, 0, 1}, height});
+    s.bsp.nodes.push_back(bsp::Node{0, {-1, -2}, {0, 0, 0}, {0, 0, 0}});
+    bsp::Leaf open{};
+    open.cluster = 0;
+    bsp::Leaf solid{};
+    solid.cluster = -1;
+    s.bsp.leafs = {open, solid};
+}
+
+TEST(LightCompare, TexelsAgainstSolidAreLeftOut) {
+    // Surface 0 lies under the solid (its texels face a wall flush against them), surface 1 above.
+    Scene ref;
+    addShader(ref, "textures/test/wall");
+    addQuad(ref, {0, 0, 0}, 64, 0, 0, 0);
+    addQuad(ref, {0, 0, 64}, 64, 0, 1, 0);
+    addSolidBelow(ref, 32);
+    ref.paint(0, 0, 0, 40, 40, 40);
+    ref.paint(0, 1, 0, 80, 80, 80);
+    Scene ours = ref;
+    ours.paint(0, 0, 0, 200, 200, 200);  // differs only where nobody looks
+    const Comparison c = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{});
+    EXPECT_EQ(c.lightmaps.hiddenSurfaces, 1);
+    EXPECT_NEAR(c.lightmaps.ratio, 1.0, 1e-9);
+    EXPECT_EQ(classOf(c, "planar").surfaces, 1);
+    EXPECT_NE(toText(c).find("entirely against solid"), std::string::npos);
+    CompareOptions everything;
+    everything.leaveOutHidden = false;
+    const Comparison all = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{}, everything);
+    EXPECT_EQ(all.lightmaps.hiddenSurfaces, 0);
+    EXPECT_NEAR(all.lightmaps.ratio, (200.0 + 80) / (40 + 80), 1e-6);
+    // Half under the solid: the mean is the visible half's.
+    Scene half;
+    addShader(half, "textures/test/wall");
+    bsp::Surface wall{};
+    wall.fogNum = -1;
+    wall.surfaceType = bsp::MST_PLANAR;
+    wall.numVerts = 4;
+    wall.numIndexes = 6;
+    const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const auto& k : corners)  // a wall facing +y from z = 0 to 64, its lightmap bright above z = 32
+        half.bsp.drawVerts.push_back(vertex({k[0] * 64, 0, k[1] * 64}, {0, 1, 0}, 0, 0, k[0], k[1]));
+    for (int i : {0, 1, 2, 0, 2, 3}) half.bsp.drawIndexes.push_back(i);
+    half.bsp.surfaces.push_back(wall);
+    addSolidBelow(half, 32);
+    half.ensurePages(1);
+    for (int y = 0; y < kBlock; ++y)
+        for (int x = 0; x < kBlock; ++x)
+            for (int ch = 0; ch < 3; ++ch) half.lump[(size_t(y) * kPage + x) * 3 + ch] = y >= kBlock / 2 ? 100 : 0;
+    const SurfaceSample visible = sampleSurface(half.lit("half"), 0, nullptr);
+    EXPECT_NEAR(visible.mean, 50, 3);
+    const Comparison h = compareLitBsps(half.lit("ref"), half.lit("ours"), nullptr, ClassInputs{});
+    ASSERT_FALSE(h.lightmaps.worst.empty());
+    EXPECT_NEAR(h.lightmaps.worst[0].referenceMean, 100, 8);
+    EXPECT_NEAR(h.lightmaps.worst[0].area, 64 * 32, 64 * 4);
 }
 
 TEST(LightCompare, VertexColoursOfVertexLitSurfaces) {
