@@ -187,8 +187,9 @@ namespace detail {
 class SolidTest;
 }
 // With `solid`, samples whose point 1 unit out along the surface normal lies in solid are left
-// out: that texel faces a wall flush against it, and no player sees it. Patches are sampled on
-// their control grid, which is not the surface, so they are always counted whole.
+// out: that texel faces a wall flush against it, and no player sees it. Curved patches are sampled
+// on their control grid, which is not the surface, so they are always counted whole; flat ones
+// (control points within 0.1 unit of a plane) are tested as planar surfaces are.
 SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex, const detail::SolidTest* solid = nullptr);
 GridFigures compareGrids(const std::vector<bsp::GridPoint>& reference, const std::vector<bsp::GridPoint>& ours,
                          const std::vector<bsp::GridPoint>* reference2);

@@ -43,6 +43,24 @@ float sampleBilinear(const LuminancePage& page, float s, float t) {
     return top * (1 - fy) + bottom * fy;
 }
 
+// Whether a patch's control points lie in one plane (within 0.1 unit): then its control grid is
+// the surface itself, and points on it can be tested against solid.
+bool flatPatch(const bsp::Bsp& bsp, const bsp::Surface& s) {
+    if (s.numVerts < 3 || s.firstVert < 0 || size_t(s.firstVert) + size_t(s.numVerts) > bsp.drawVerts.size())
+        return false;
+    const Vec3 origin = detail::vertexPosition(bsp, s.firstVert);
+    Vec3 normal;
+    for (int i = 1; i + 1 < s.numVerts && length(normal) <= 0; ++i)
+        for (int j = i + 1; j < s.numVerts && length(normal) <= 0; ++j)
+            normal = cross(detail::vertexPosition(bsp, s.firstVert + i) - origin,
+                           detail::vertexPosition(bsp, s.firstVert + j) - origin);
+    if (length(normal) <= 0) return false;
+    normal = normalize(normal);
+    for (int i = 0; i < s.numVerts; ++i)
+        if (std::fabs(dot(detail::vertexPosition(bsp, s.firstVert + i) - origin, normal)) > 0.1f) return false;
+    return true;
+}
+
 // Highest lightmapNum any surface uses, or -1.
 int highestPage(const bsp::Bsp& bsp) {
     int highest = -1;
@@ -107,7 +125,7 @@ SurfaceSample sampleSurface(const LitBsp& lit, int surfaceIndex, const detail::S
                             std::to_string(surface.lightmapNum) + " of " + std::to_string(lit.pages.size()));
     const LuminancePage& page = lit.pages[surface.lightmapNum];
 
-    if (surface.surfaceType == bsp::MST_PATCH) solid = nullptr;
+    if (surface.surfaceType == bsp::MST_PATCH && !flatPatch(lit.bsp, surface)) solid = nullptr;
     double weighted = 0, areaSum = 0, unweighted = 0;
     int sampledTriangles = 0;
     int64_t samplesTaken = 0, samplesVisible = 0;

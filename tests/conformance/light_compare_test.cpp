@@ -358,21 +358,25 @@ TEST(LightCompare, TexelsAgainstSolidAreLeftOut) {
     addShader(ref, "textures/test/wall");
     addQuad(ref, {0, 0, 0}, 64, 0, 0, 0);
     addQuad(ref, {0, 0, 64}, 64, 0, 1, 0);
+    addPatch(ref, {0, 0, 0}, 64, 0, 2, 0);  // flat: tested as planar surfaces are
     addSolidBelow(ref, 32);
     ref.paint(0, 0, 0, 40, 40, 40);
     ref.paint(0, 1, 0, 80, 80, 80);
+    ref.paint(0, 2, 0, 60, 60, 60);
     Scene ours = ref;
     ours.paint(0, 0, 0, 200, 200, 200);  // differs only where nobody looks
+    ours.paint(0, 2, 0, 10, 10, 10);
     const Comparison c = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{});
-    EXPECT_EQ(c.lightmaps.hiddenSurfaces, 1);
+    EXPECT_EQ(c.lightmaps.hiddenSurfaces, 2);
     EXPECT_NEAR(c.lightmaps.ratio, 1.0, 1e-9);
     EXPECT_EQ(classOf(c, "planar").surfaces, 1);
+    EXPECT_EQ(classOf(c, "patch").surfaces, 0);
     EXPECT_NE(toText(c).find("entirely against solid"), std::string::npos);
     CompareOptions everything;
     everything.leaveOutHidden = false;
     const Comparison all = compareLitBsps(ref.lit("ref"), ours.lit("ours"), nullptr, ClassInputs{}, everything);
     EXPECT_EQ(all.lightmaps.hiddenSurfaces, 0);
-    EXPECT_NEAR(all.lightmaps.ratio, (200.0 + 80) / (40 + 80), 1e-6);
+    EXPECT_NEAR(all.lightmaps.ratio, (200.0 + 80 + 10) / (40 + 80 + 60), 1e-6);
     // Half under the solid: the mean is the visible half's.
     Scene half;
     addShader(half, "textures/test/wall");

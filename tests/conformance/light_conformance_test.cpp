@@ -53,7 +53,7 @@ std::vector<MapCase> cases() {
     // classes within 3.3 % (patch 1.033), vertex colours 1.028, grid 1.007 / 1.006, correlations
     // 0.998 / 0.9995, directions 99.2 %.
     out.push_back(MapCase{"oacmpdm1", {"-fast"}, {}});
-    // Every tolerance holds: lightmaps 1.001, correlation 0.9924, classes within 1.2 %, grid
+    // Every tolerance holds: lightmaps 1.004, correlation 0.9950, classes within 1.2 %, grid
     // 0.998 / 0.997, correlations 0.9997 / 0.998, directions 99.2 %, vertex colours 1.000.
     out.push_back(MapCase{"oacmpdm5", {"-fast"}, {}});
     {
@@ -75,12 +75,12 @@ std::vector<MapCase> cases() {
     }
     {
         // Sun and sky light: the only map here with a sky-lit class. Not met yet (measured at
-        // -fast): classes patch 1.103 and shadow 1.195 (goal within 5 %), vertex colours 1.613 (goal
+        // -fast): classes patch 1.066 and shadow 1.195 (goal within 5 %), vertex colours 1.613 (goal
         // within 5 %; nearly all of it on the sky box's own faces below the map). Met: lightmaps
-        // 1.006, correlation 0.9985, sky-lit 1.001, grid 1.004 / 1.001, correlations 0.996 / 0.996,
+        // 1.005, correlation 0.9990, sky-lit 1.001, grid 1.004 / 1.001, correlations 0.996 / 0.996,
         // directions 99.6 %.
         MapCase c{"oacmpdm4", {"-fast"}, {}};
-        c.limits.classRatioOf = {{"patch", 0.12}, {"shadow", 0.22}};
+        c.limits.classRatioOf = {{"patch", 0.08}, {"shadow", 0.22}};
         c.limits.vertexRatio = 0.62;
         out.push_back(c);
     }
