@@ -2,6 +2,7 @@
 #include "light_contribution.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -125,7 +126,11 @@ std::optional<LightContribution> controlledContribution(const Light& light, Vec3
 float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
     const size_t n = winding.size();
     if (n < 3) return 0;
-    std::vector<Vec3> dirs(n);
+    // Emitter pieces have a handful of corners: no allocation on this per-luxel, per-light path.
+    constexpr size_t kInline = 16;
+    std::array<Vec3, kInline> inlineDirs;
+    std::vector<Vec3> heapDirs(n > kInline ? n : 0);
+    Vec3* dirs = n > kInline ? heapDirs.data() : inlineDirs.data();
     for (size_t i = 0; i < n; ++i) dirs[i] = normalize(winding[i] - point);
     double total = 0;
     for (size_t i = 0; i < n; ++i) {
