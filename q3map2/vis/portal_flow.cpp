@@ -16,7 +16,14 @@ namespace {
 struct FlowLevel {
     explicit FlowLevel(size_t words) : mightSee(words) {}
 
+    // Only words [first, last) of mightSee may be non-zero (the rest is stale): deep in the walk
+    // the set is sparse, and the bit operations skip what is known to be empty.
     std::vector<uint64_t> mightSee;
+    size_t first = 0, last = 0;
+    bool mightSeePortal(size_t p) const {
+        const size_t w = p >> 6;
+        return w >= first && w < last && ((mightSee[w] >> (p & 63)) & 1u);
+    }
     const Winding* source = nullptr;
     const Winding* pass = nullptr;  // nullptr at the base portal
     Winding sourceBuffer;
@@ -51,6 +58,8 @@ public:
     void run() {
         FlowLevel& head = level(0);
         std::copy_n(s_.base.flood.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
+        head.first = 0;
+        head.last = words_;
         head.source = &base_.winding;
         head.pass = nullptr;
         if (s_.mode == FlowMode::Passage)
@@ -75,12 +84,19 @@ private:
     bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
         const uint64_t* m = mask(portal);
         uint64_t more = 0;
-        for (size_t w = 0; w < words_; ++w) {
+        size_t first = prev.last, last = prev.first;
+        for (size_t w = prev.first; w < prev.last; ++w) {
             uint64_t v = prev.mightSee[w] & m[w];
             if (passage) v &= passage[w];
             next.mightSee[w] = v;
+            if (v) {
+                first = std::min(first, w);
+                last = w + 1;
+            }
             more |= v & ~vis_[w];
         }
+        next.first = first;
+        next.last = std::max(first, last);
         return more != 0;
     }
 
@@ -113,9 +129,12 @@ private:
             FlowLevel& cur = *scratch_.levels[depth + 1];
             const int pnum = leafPortals[k];
             const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
-            if (p.removed || !testBit(prev.mightSee.data(), static_cast<size_t>(pnum))) continue;
-            const bool more = narrow(prev, cur, pnum, s_.mode == FlowMode::PassagePortal ? passageRow(from, k) : nullptr);
-            if (!more && testBit(vis_, static_cast<size_t>(pnum))) continue;
+            if (p.removed || !prev.mightSeePortal(static_cast<size_t>(pnum))) continue;
+            const uint64_t* passage = s_.mode == FlowMode::PassagePortal ? passageRow(from, k) : nullptr;
+            // Through a portal already seen the walk only goes on when it may reveal more; the
+            // narrowed set is built after the geometry otherwise, when the portal survives.
+            const bool seen = testBit(vis_, static_cast<size_t>(pnum));
+            if (seen && !narrow(prev, cur, pnum, passage)) continue;
 
             // The part of p in front of the base portal.
             const float dp = base_.plane.distanceTo(p.origin);
@@ -145,6 +164,8 @@ private:
                 if (!pass) continue;
             }
             setBit(vis_, static_cast<size_t>(pnum));
+            // Nothing new in the set: every portal the walk could reach is already marked.
+            if (!seen && !narrow(prev, cur, pnum, passage)) continue;
             cur.source = source;
             cur.pass = pass;
             clipped(pnum, depth + 1);
@@ -159,8 +180,7 @@ private:
             FlowLevel& prev = *scratch_.levels[depth];
             FlowLevel& cur = *scratch_.levels[depth + 1];
             const int pnum = leafPortals[k];
-            if (s_.graph.portals[static_cast<size_t>(pnum)].removed ||
-                !testBit(prev.mightSee.data(), static_cast<size_t>(pnum)))
+            if (s_.graph.portals[static_cast<size_t>(pnum)].removed || !prev.mightSeePortal(static_cast<size_t>(pnum)))
                 continue;
             setBit(vis_, static_cast<size_t>(pnum));
             if (!narrow(prev, cur, pnum, passageRow(from, k))) continue;
