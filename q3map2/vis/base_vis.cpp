@@ -20,8 +20,14 @@ bool beyondFarPlane(const VisPortal& p, const VisPortal& q, const FarPlane& far)
     }
 }
 
+// Slack for the bounding-sphere shortcuts below: the sphere is computed in single precision.
+constexpr float kSphereSlack = 0.05f;
+
 // q's winding reaches in front of p's plane, and p's winding reaches behind q's plane.
 bool facesForward(const VisPortal& p, const VisPortal& q) {
+    // Spheres first: most pairs are decided without looking at a point.
+    if (p.plane.distanceTo(q.origin) + q.radius < kOnEpsilon - kSphereSlack) return false;
+    if (q.plane.distanceTo(p.origin) - p.radius > -kOnEpsilon + kSphereSlack) return false;
     bool qInFront = false;
     for (Vec3 point : q.winding.view())
         if (p.plane.distanceTo(point) > kOnEpsilon) {

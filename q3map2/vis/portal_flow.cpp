@@ -1,3 +1,7 @@
+
+
+
+
 #include "portal_flow.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -200,10 +204,10 @@ private:
 }  // namespace
 
 std::vector<size_t> flowWaveBounds(size_t count) {
-    // Waves grow with the work done: each is an eighth of the portals before it, at least 32, so
+    // Waves grow with the work done: each is 1/32 of the portals before it, at least 16, so
     // that late (large) portals find most earlier results finished while both cores stay busy.
     std::vector<size_t> bounds{0};
-    while (bounds.back() < count) bounds.push_back(std::min(count, bounds.back() + std::max<size_t>(32, bounds.back() / 8)));
+    while (bounds.back() < count) bounds.push_back(std::min(count, bounds.back() + std::max<size_t>(16, bounds.back() / 32)));
     return bounds;
 }
 
