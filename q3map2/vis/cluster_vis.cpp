@@ -8,7 +8,22 @@
 
 namespace q3::vis {
 
-std::vector<uint8_t> buildVisibilityLump(const VisGraph& graph, const BitMatrix& portalVis) {
+BitMatrix portalClusterSets(const VisGraph& graph, const BitMatrix& portalBits) {
+    BitMatrix sets(graph.portals.size(), static_cast<size_t>(graph.clusterCount));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.portals.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t p = range.begin(); p != range.end(); ++p) {
+            uint64_t* out = sets.row(p);
+            setBit(out, static_cast<size_t>(graph.portals[p].leaf));
+            const uint64_t* row = portalBits.row(p);
+            for (size_t w = 0; w < portalBits.words(); ++w)
+                for (uint64_t bits = row[w]; bits; bits &= bits - 1)
+                    setBit(out, static_cast<size_t>(graph.portals[w * 64 + static_cast<size_t>(std::countr_zero(bits))].leaf));
+        }
+    });
+    return sets;
+}
+
+std::vector<uint8_t> buildVisibilityLump(const VisGraph& graph, const BitMatrix& clusterSets) {
     const int clusters = graph.clusterCount;
     const int32_t rowBytes = visRowBytes(clusters);
     std::vector<uint8_t> lump(8 + static_cast<size_t>(clusters) * static_cast<size_t>(rowBytes), 0);
@@ -18,31 +33,20 @@ std::vector<uint8_t> buildVisibilityLump(const VisGraph& graph, const BitMatrix&
     for (int c = 0; c < clusters; ++c) rootOf[static_cast<size_t>(c)] = mergedLeaf(graph, c);
 
     tbb::parallel_for(tbb::blocked_range<int>(0, clusters, 16), [&](const tbb::blocked_range<int>& range) {
-        std::vector<uint64_t> seenPortals(portalVis.words());
-        std::vector<uint8_t> seenLeafs(static_cast<size_t>(clusters));
+        std::vector<uint64_t> seen(clusterSets.words());
         for (int c = range.begin(); c != range.end(); ++c) {
             const int root = rootOf[static_cast<size_t>(c)];
-            std::fill(seenPortals.begin(), seenPortals.end(), 0);
+            std::fill(seen.begin(), seen.end(), 0);
+            setBit(seen.data(), static_cast<size_t>(root));
             for (int pnum : graph.leafs[static_cast<size_t>(root)].portals) {
                 if (graph.portals[static_cast<size_t>(pnum)].removed) continue;
-                const uint64_t* row = portalVis.row(static_cast<size_t>(pnum));
-                for (size_t w = 0; w < seenPortals.size(); ++w) seenPortals[w] |= row[w];
-                setBit(seenPortals.data(), static_cast<size_t>(pnum));
-            }
-            std::fill(seenLeafs.begin(), seenLeafs.end(), 0);
-            seenLeafs[static_cast<size_t>(root)] = 1;
-            for (size_t w = 0; w < seenPortals.size(); ++w) {
-                uint64_t bits = seenPortals[w];
-                while (bits) {
-                    const size_t p = w * 64 + static_cast<size_t>(std::countr_zero(bits));
-                    bits &= bits - 1;
-                    seenLeafs[static_cast<size_t>(graph.portals[p].leaf)] = 1;
-                }
+                const uint64_t* row = clusterSets.row(static_cast<size_t>(pnum));
+                for (size_t w = 0; w < seen.size(); ++w) seen[w] |= row[w];
             }
             uint8_t* out = lump.data() + 8 + static_cast<size_t>(c) * static_cast<size_t>(rowBytes);
             // A merged-away leaf is seen when the leaf it went into is.
             for (int other = 0; other < clusters; ++other)
-                if (seenLeafs[static_cast<size_t>(rootOf[static_cast<size_t>(other)])])
+                if (testBit(seen.data(), static_cast<size_t>(rootOf[static_cast<size_t>(other)])))
                     out[other >> 3] |= static_cast<uint8_t>(1u << (other & 7));
         }
     });

@@ -42,7 +42,7 @@ Passages createPassages(const VisGraph& graph, const BaseVis& base, const std::f
         passages.firstRow[i] = rows;
         rows += graph.leafs[static_cast<size_t>(graph.portals[i].leaf)].portals.size();
     }
-    passages.canSee = BitMatrix(rows, n);
+    passages.canSee = BitMatrix(rows, static_cast<size_t>(graph.clusterCount));
     const size_t words = base.flood.words();
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4), [&](const tbb::blocked_range<size_t>& range) {
@@ -56,6 +56,7 @@ Passages createPassages(const VisGraph& graph, const BaseVis& base, const std::f
                 int count = findSeparators(portal.winding, target.winding, false, separators.data());
                 count += findSeparators(target.winding, portal.winding, true, separators.data() + count);
                 uint64_t* canSee = passages.canSee.row(passages.firstRow[i] + k);
+                setBit(canSee, static_cast<size_t>(target.leaf));
                 const uint64_t* targetFlood = base.flood.row(static_cast<size_t>(targets[k]));
                 const uint64_t* portalFlood = base.flood.row(i);
                 for (size_t w = 0; w < words; ++w) {
@@ -64,8 +65,10 @@ Passages createPassages(const VisGraph& graph, const BaseVis& base, const std::f
                         const size_t j = w * 64 + static_cast<size_t>(std::countr_zero(candidates));
                         candidates &= candidates - 1;
                         const VisPortal& candidate = graph.portals[j];
-                        if (!candidate.removed && survivesSeparators(candidate, separators.data(), count))
-                            setBit(canSee, j);
+                        // A cluster already seen needs no second portal into it.
+                        if (candidate.removed || testBit(canSee, static_cast<size_t>(candidate.leaf))) continue;
+                        if (survivesSeparators(candidate, separators.data(), count))
+                            setBit(canSee, static_cast<size_t>(candidate.leaf));
                     }
                 }
             }

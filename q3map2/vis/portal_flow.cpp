@@ -4,6 +4,8 @@
 
 #include "portal_flow.h"
 
+#include "cluster_vis.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -20,13 +22,13 @@ namespace {
 struct FlowLevel {
     explicit FlowLevel(size_t words) : mightSee(words) {}
 
-    // Only words [first, last) of mightSee may be non-zero (the rest is stale): deep in the walk
-    // the set is sparse, and the bit operations skip what is known to be empty.
+    // Clusters still possibly visible. Only words [first, last) may be non-zero (the rest is
+    // stale): deep in the walk the set is sparse, and the bit operations skip what is empty.
     std::vector<uint64_t> mightSee;
     size_t first = 0, last = 0;
-    bool mightSeePortal(size_t p) const {
-        const size_t w = p >> 6;
-        return w >= first && w < last && ((mightSee[w] >> (p & 63)) & 1u);
+    bool mightSeeCluster(size_t c) const {
+        const size_t w = c >> 6;
+        return w >= first && w < last && ((mightSee[w] >> (c & 63)) & 1u);
     }
     const Winding* source = nullptr;
     const Winding* pass = nullptr;  // nullptr at the base portal
@@ -40,36 +42,36 @@ struct FlowLevel {
 
 struct FlowShared {
     const VisGraph& graph;
-    const BaseVis& base;
+    const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
     const Passages* passages;
     FlowMode mode;
-    BitMatrix& portalVis;
+    BitMatrix& clusterVis;           // per portal: the clusters it sees (the result)
     const std::vector<int>& waveOf;  // per portal
 };
 
 // The scratch of one thread, reused from portal to portal.
 struct FlowScratch {
     std::vector<std::unique_ptr<FlowLevel>> levels;
+    std::vector<uint8_t> onStack;  // per cluster: on the current chain
 };
 
 class PortalWalk {
 public:
     PortalWalk(const FlowShared& shared, FlowScratch& scratch, int basePortal)
         : s_(shared), scratch_(scratch), baseIndex_(basePortal), base_(shared.graph.portals[static_cast<size_t>(basePortal)]),
-          vis_(shared.portalVis.row(static_cast<size_t>(basePortal))), words_(shared.portalVis.words()),
+          vis_(shared.clusterVis.row(static_cast<size_t>(basePortal))), words_(shared.clusterVis.words()),
           currentWave_(shared.waveOf[static_cast<size_t>(basePortal)]) {}
 
     void run() {
         FlowLevel& head = level(0);
-        std::copy_n(s_.base.flood.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
+        std::copy_n(s_.floodClusters.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
         head.first = 0;
         head.last = words_;
         head.source = &base_.winding;
         head.pass = nullptr;
-        if (s_.mode == FlowMode::Passage)
-            passageOnly(baseIndex_, 0);
-        else
-            clipped(baseIndex_, 0);
+        scratch_.onStack.assign(s_.graph.leafs.size(), 0);
+        setBit(vis_, static_cast<size_t>(base_.leaf));
+        enter(baseIndex_, 0);
     }
 
 private:
@@ -81,10 +83,10 @@ private:
     // Finished results of earlier waves prune harder than the base flood.
     const uint64_t* mask(int portal) const {
         const size_t p = static_cast<size_t>(portal);
-        return s_.waveOf[p] < currentWave_ ? s_.portalVis.row(p) : s_.base.flood.row(p);
+        return s_.waveOf[p] < currentWave_ ? s_.clusterVis.row(p) : s_.floodClusters.row(p);
     }
 
-    // next = prev & mask [& passage]; true when next holds a portal not yet marked visible.
+    // next = prev & mask [& passage]; true when next holds a cluster not yet marked visible.
     bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
         const uint64_t* m = mask(portal);
         uint64_t more = 0;
@@ -105,7 +107,7 @@ private:
     }
 
     const uint64_t* passageRow(int from, size_t k) const {
-        return s_.passages ? s_.passages->row(from, k) : nullptr;
+        return s_.mode == FlowMode::Portal ? nullptr : s_.passages->row(from, k);
     }
 
     // Chops `pass` by the separators of `next` on one side; nullptr when nothing is left.
@@ -121,75 +123,62 @@ private:
         return pass;
     }
 
-    // Walk into the cluster `from` leads to; `depth` is the level of the state on arrival.
-    void clipped(int from, size_t depth) {
-        const VisPortal& entry = s_.graph.portals[static_cast<size_t>(from)];
-        const std::vector<int>& leafPortals = s_.graph.leafs[static_cast<size_t>(entry.leaf)].portals;
-        FlowLevel& next = level(depth + 1);
-        next.separatorsFound = false;
+    // The part of `p` the walk can see through, or nullptr: in front of the base portal, seen from
+    // the part of the source behind p, and inside the separators of the previous source and pass.
+    const Winding* clipCandidate(const FlowLevel& prev, FlowLevel& cur, const VisPortal& p) {
+        const float dp = base_.plane.distanceTo(p.origin);
+        const Winding* pass;
+        if (dp < -p.radius) return nullptr;
+        if (dp > p.radius)
+            pass = &p.winding;
+        else if (!(pass = chopWinding(&p.winding, base_.plane, &cur.passBuffers[0])))
+            return nullptr;
+        const float ds = p.plane.distanceTo(base_.origin);
+        if (ds > base_.radius) return nullptr;
+        if (ds < -base_.radius)
+            cur.source = prev.source;
+        else if (!(cur.source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
+            return nullptr;
+        if (!prev.pass) return pass;  // the second cluster can only be blocked if coplanar
+        if (!cur.separatorsFound) {
+            cur.separatorCount[0] = findSeparators(*prev.source, *prev.pass, false, cur.separators[0].data());
+            cur.separatorCount[1] = findSeparators(*prev.pass, *prev.source, true, cur.separators[1].data());
+            cur.separatorsFound = true;
+        }
+        pass = clipBySeparators(cur, 0, p, pass);
+        return pass ? clipBySeparators(cur, 1, p, pass) : nullptr;
+    }
+
+    // Walk on into the cluster portal `from` leads to; `depth` is the level of the state on arrival.
+    void enter(int from, size_t depth) {
+        const size_t leaf = static_cast<size_t>(s_.graph.portals[static_cast<size_t>(from)].leaf);
+        // Clusters are convex (q3map2 merges only convex ones): a line never enters one twice.
+        if (scratch_.onStack[leaf]) return;
+        scratch_.onStack[leaf] = 1;
+        const std::vector<int>& leafPortals = s_.graph.leafs[leaf].portals;
+        level(depth + 1).separatorsFound = false;
         for (size_t k = 0; k < leafPortals.size(); ++k) {
             // `level` may grow the scratch in deeper calls: fetch the levels again each time.
             FlowLevel& prev = *scratch_.levels[depth];
             FlowLevel& cur = *scratch_.levels[depth + 1];
             const int pnum = leafPortals[k];
             const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
-            if (p.removed || !prev.mightSeePortal(static_cast<size_t>(pnum))) continue;
-            const uint64_t* passage = s_.mode == FlowMode::PassagePortal ? passageRow(from, k) : nullptr;
-            // Through a portal already seen the walk only goes on when it may reveal more; the
-            // narrowed set is built after the geometry otherwise, when the portal survives.
-            const bool seen = testBit(vis_, static_cast<size_t>(pnum));
-            if (seen && !narrow(prev, cur, pnum, passage)) continue;
-
-            // The part of p in front of the base portal.
-            const float dp = base_.plane.distanceTo(p.origin);
-            const Winding* pass;
-            if (dp < -p.radius) continue;
-            if (dp > p.radius)
-                pass = &p.winding;
-            else if (!(pass = chopWinding(&p.winding, base_.plane, &cur.passBuffers[0])))
-                continue;
-            // The part of the source behind p.
-            const float ds = p.plane.distanceTo(base_.origin);
-            const Winding* source;
-            if (ds > base_.radius) continue;
-            if (ds < -base_.radius)
-                source = prev.source;
-            else if (!(source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
-                continue;
-
-            if (prev.pass) {
-                if (!cur.separatorsFound) {
-                    cur.separatorCount[0] = findSeparators(*prev.source, *prev.pass, false, cur.separators[0].data());
-                    cur.separatorCount[1] = findSeparators(*prev.pass, *prev.source, true, cur.separators[1].data());
-                    cur.separatorsFound = true;
-                }
-                pass = clipBySeparators(cur, 0, p, pass);
-                if (pass) pass = clipBySeparators(cur, 1, p, pass);
-                if (!pass) continue;
-            }
-            setBit(vis_, static_cast<size_t>(pnum));
-            // Nothing new in the set: every portal the walk could reach is already marked.
-            if (!seen && !narrow(prev, cur, pnum, passage)) continue;
-            cur.source = source;
-            cur.pass = pass;
-            clipped(pnum, depth + 1);
-        }
-    }
-
-    void passageOnly(int from, size_t depth) {
-        const VisPortal& entry = s_.graph.portals[static_cast<size_t>(from)];
-        const std::vector<int>& leafPortals = s_.graph.leafs[static_cast<size_t>(entry.leaf)].portals;
-        level(depth + 1);
-        for (size_t k = 0; k < leafPortals.size(); ++k) {
-            FlowLevel& prev = *scratch_.levels[depth];
-            FlowLevel& cur = *scratch_.levels[depth + 1];
-            const int pnum = leafPortals[k];
-            if (s_.graph.portals[static_cast<size_t>(pnum)].removed || !prev.mightSeePortal(static_cast<size_t>(pnum)))
-                continue;
-            setBit(vis_, static_cast<size_t>(pnum));
+            if (p.removed || !prev.mightSeeCluster(static_cast<size_t>(p.leaf))) continue;
+            // Nothing new to find behind p: its own cluster is in the set, so this also keeps
+            // every cluster not yet marked.
             if (!narrow(prev, cur, pnum, passageRow(from, k))) continue;
-            passageOnly(pnum, depth + 1);
+            if (s_.mode == FlowMode::Passage) {
+                setBit(vis_, static_cast<size_t>(p.leaf));
+                enter(pnum, depth + 1);
+                continue;
+            }
+            const Winding* pass = clipCandidate(prev, cur, p);
+            if (!pass) continue;
+            setBit(vis_, static_cast<size_t>(p.leaf));
+            cur.pass = pass;
+            enter(pnum, depth + 1);
         }
+        scratch_.onStack[leaf] = 0;
     }
 
     const FlowShared& s_;
@@ -226,8 +215,9 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
     for (size_t w = 0; w + 1 < bounds.size(); ++w)
         for (size_t i = bounds[w]; i < bounds[w + 1]; ++i) waveOf[static_cast<size_t>(order[i])] = static_cast<int>(w);
 
-    BitMatrix portalVis(n, n);
-    FlowShared shared{graph, base, passages, options.mode, portalVis, waveOf};
+    const BitMatrix floodClusters = portalClusterSets(graph, base.flood);
+    BitMatrix clusterVis(n, static_cast<size_t>(graph.clusterCount));
+    FlowShared shared{graph, floodClusters, passages, options.mode, clusterVis, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
         // Within a wave the largest first, so that the longest walks do not start last.
@@ -245,7 +235,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
             }
         }, tbb::simple_partitioner());
     }
-    return portalVis;
+    return clusterVis;
 }
 
 }  // namespace q3::vis

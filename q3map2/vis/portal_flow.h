@@ -1,7 +1,12 @@
 // The full vis (q3map2's PortalFlow / PassagePortalFlow / PassageFlow): for each portal, a
 // recursive walk through the clusters beyond it that keeps a source winding (what is left of the
 // portal) and a pass winding (what is left of the last portal walked through), clips every next
-// portal by the separating planes between them, and marks the portals where something survives.
+// portal by the separating planes between them, and marks the cluster behind each portal where
+// something survives.
+//
+// The walk's "might see" sets hold clusters rather than portals (as ericw-tools' vis does): a
+// branch stops as soon as every cluster it could still reach is marked already, which prunes far
+// more than q3map2's portal sets while marking the same clusters.
 //
 // Portals are done in waves along the order of their "might see" counts (smallest first); a
 // portal's walk prunes with the finished results of earlier waves and with the base flood of the
@@ -28,7 +33,8 @@ struct FlowOptions {
     bool sort = true;  // false: -nosort (portal index order)
 };
 
-// `passages` is required for the two passage modes. Returns the portal-to-portal visibility.
+// `passages` is required for the two passage modes. Returns per portal the clusters it sees
+// (the one it leads into included), for buildVisibilityLump.
 BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Passages* passages,
                             const FlowOptions& options, const std::function<void()>& advance = {});
 

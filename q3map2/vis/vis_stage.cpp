@@ -138,9 +138,9 @@ int runVisStage(const VisOptions& options, const CommonOptions& common, Log& log
 
     const BaseVis base = withProgress(log, "BasePortalVis", portalCount,
                                       [&](auto advance) { return computeBaseVis(graph, farPlane, advance); });
-    BitMatrix portalVis;
+    BitMatrix clusterSets;
     if (options.fast) {
-        portalVis = base.flood;
+        clusterSets = portalClusterSets(graph, base.flood);
     } else {
         FlowOptions flow;
         flow.sort = !options.noSort;
@@ -151,13 +151,13 @@ int runVisStage(const VisOptions& options, const CommonOptions& common, Log& log
                                     [&](auto advance) { return createPassages(graph, base, advance); });
         const char* title = flow.mode == FlowMode::Portal ? "PortalFlow"
                             : flow.mode == FlowMode::Passage ? "PassageFlow" : "PassagePortalFlow";
-        portalVis = withProgress(log, title, portalCount, [&](auto advance) {
+        clusterSets = withProgress(log, title, portalCount, [&](auto advance) {
             return computePortalFlow(graph, base, flow.mode == FlowMode::Portal ? nullptr : &passages, flow, advance);
         });
     }
 
     log.info("creating leaf vis...");
-    bsp.visibility = buildVisibilityLump(graph, portalVis);
+    bsp.visibility = buildVisibilityLump(graph, clusterSets);
     reportSummary(summarizeVisibility(bsp.visibility), options.clusterHistogram, log);
 
     log.info("Writing " + bspPath.string());

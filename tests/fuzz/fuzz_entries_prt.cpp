@@ -53,7 +53,7 @@ void fuzzPrt(std::span<const uint8_t> input, const FuzzContext&) {
     if (switches & 2) vis::mergeLeaves(graph, switches & 1);
     if (switches & 4) vis::mergeLeafPortals(graph);
     const vis::BaseVis base = vis::computeBaseVis(graph, vis::FarPlane{});
-    const std::vector<uint8_t> fast = vis::buildVisibilityLump(graph, base.flood);
+    const std::vector<uint8_t> fast = vis::buildVisibilityLump(graph, vis::portalClusterSets(graph, base.flood));
     checkLump(fast, nullptr, file.clusterCount);
     const vis::Passages passages = vis::createPassages(graph, base);
     for (vis::FlowMode mode : {vis::FlowMode::Portal, vis::FlowMode::PassagePortal, vis::FlowMode::Passage}) {

@@ -40,7 +40,7 @@ bool sees(const std::vector<uint8_t>& lump, int from, int to) {
 
 std::vector<uint8_t> runVis(const VisGraph& graph, bool fast, FlowMode mode) {
     const BaseVis base = computeBaseVis(graph, FarPlane{});
-    if (fast) return buildVisibilityLump(graph, base.flood);
+    if (fast) return buildVisibilityLump(graph, portalClusterSets(graph, base.flood));
     const Passages passages = createPassages(graph, base);
     FlowOptions options;
     options.mode = mode;
@@ -115,7 +115,7 @@ TEST(LeafMerge, ConvexNeighboursMergeAndKeepTheirRows) {
     VisGraph graph = buildVisGraph(file, false);
     EXPECT_GT(mergeLeaves(graph, false), 0);
     const BaseVis base = computeBaseVis(graph, FarPlane{});
-    const std::vector<uint8_t> lump = buildVisibilityLump(graph, base.flood);
+    const std::vector<uint8_t> lump = buildVisibilityLump(graph, portalClusterSets(graph, base.flood));
     for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) EXPECT_TRUE(sees(lump, a, b)) << a << " -> " << b;
 }
