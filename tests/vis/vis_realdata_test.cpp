@@ -148,17 +148,33 @@ TEST_P(VisFull, WithinOnePercentOfReferenceConservativeAndThreadIndependent) {
 
 INSTANTIATE_TEST_SUITE_P(Maps, VisFull, ::testing::Values("oacmpdm1", "oacmpdm5"), paramName);
 
-// The other flow and merge options on a small map: each runs, stays conservative, and lands
-// between the full vis and the fast one.
+// The number before `label` on the line that ends with it ("   161 leaves merged"), or -1.
+int countBefore(const std::string& log, const std::string& label) {
+    const size_t at = log.find(" " + label + "\n");
+    if (at == std::string::npos) return -1;
+    const size_t start = log.rfind('\n', at);
+    return std::stoi(log.substr(start == std::string::npos ? 0 : start + 1, at - (start == std::string::npos ? 0 : start + 1)));
+}
+
+// The other flow and merge options on a small map: each runs, merges exactly what q3map2 merges,
+// stays conservative, no looser than the fast vis and within 1 % of q3map2 with the same option.
 class VisOptions : public Fixture {};
 
-TEST_P(VisOptions, ConservativeAndNoLooserThanFast) {
+TEST_P(VisOptions, MatchReferenceMergesConservativeWithinOnePercent) {
     const VisReference ref = visReference(reference(), "oacmpdm1", false);
+    const fs::path theirs = referenceVisWith(reference(), ref, GetParam());
     const fs::path bsp = stageVisInputs(ref, q3::test::tempDir());
     std::string log;
-    ASSERT_EQ(runOurVis(bsp, GetParam(), 2, &log), 0) << log;
-    const bsp::Bsp ours = bsp::readBsp(bsp);
-    EXPECT_LE(meanVisibleFraction(ours.visibility), meanVisibleFraction(bsp::readBsp(ref.fastBsp).visibility));
+    ASSERT_EQ(runOurVis(bsp, GetParam() + " -saveprt", 2, &log), 0) << log;
+    const std::string theirLog = readFileText(fs::path(theirs).replace_extension(".log"));
+    for (const char* label : {"leaves merged", "portals merged", "hint portals merged", "active portals", "hint portals"})
+        EXPECT_EQ(countBefore(log, label), countBefore(theirLog, label)) << label;
+    const double ourFraction = meanVisibleFraction(bsp::readBsp(bsp).visibility);
+    const double theirFraction = meanVisibleFraction(bsp::readBsp(theirs).visibility);
+    std::printf("[ visible    ] oacmpdm1 %s: ours %.3f %%, reference %.3f %% of clusters\n", GetParam().c_str(),
+                100 * ourFraction, 100 * theirFraction);
+    EXPECT_LE(ourFraction, theirFraction * 1.01);
+    EXPECT_LE(ourFraction, meanVisibleFraction(bsp::readBsp(ref.fastBsp).visibility));
     expectConservative(bsp, 2000, 10);
 }
 

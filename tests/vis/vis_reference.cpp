@@ -19,10 +19,11 @@ std::string referenceCommand(const fs::path& reference) {
            q3::test::shellQuote(q3::test::openArenaBase()) + " -fs_basegame baseoa -threads 2";
 }
 
-void runReference(const std::string& what, const std::string& commandLine) {
+std::string runReference(const std::string& what, const std::string& commandLine) {
     std::string output;
     if (q3::test::runCommand(commandLine, &output) != 0)
         throw std::runtime_error(what + " failed: " + output.substr(output.size() > 600 ? output.size() - 600 : 0));
+    return output;
 }
 
 std::string uniqueSuffix() {
@@ -38,8 +39,10 @@ void referenceVis(const fs::path& reference, const VisReference& ref, const std:
     fs::copy_file(ref.bsp, bsp);
     fs::copy_file(ref.prt, work / ref.prt.filename());
     try {
-        runReference("reference -vis " + options + " on " + bsp.string(),
-                     referenceCommand(reference) + " -vis " + options + " -saveprt " + q3::test::shellQuote(bsp));
+        const std::string output =
+            runReference("reference -vis " + options + " on " + bsp.string(),
+                         referenceCommand(reference) + " -vis " + options + " -saveprt " + q3::test::shellQuote(bsp));
+        writeFileAtomic(fs::path(target).replace_extension(".log"), output);
         fs::rename(bsp, target);
     } catch (...) {
         fs::remove_all(work);
@@ -82,6 +85,12 @@ VisReference visReference(const fs::path& reference, const std::string& mapName,
     if (!fs::exists(ref.fastBsp)) referenceVis(reference, ref, "-fast", ref.fastBsp);
     if (withFull && !fs::exists(ref.fullBsp)) referenceVis(reference, ref, "", ref.fullBsp);
     return ref;
+}
+
+fs::path referenceVisWith(const fs::path& reference, const VisReference& ref, const std::string& option) {
+    const fs::path target = ref.bsp.parent_path() / (ref.bsp.stem().string() + option + ".bsp");
+    if (!fs::exists(target)) referenceVis(reference, ref, option, target);
+    return target;
 }
 
 fs::path stageVisInputs(const VisReference& ref, const fs::path& dir) {

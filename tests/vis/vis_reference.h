@@ -17,6 +17,11 @@ struct VisReference {
 // with the tail of the reference's output when it fails.
 VisReference visReference(const std::filesystem::path& reference, const std::string& mapName, bool withFull);
 
+// The reference's -vis with `options` (one option, like "-merge") on the cached inputs: the BSP as
+// NAME<options>.bsp and its output as NAME<options>.log beside the others, made once.
+std::filesystem::path referenceVisWith(const std::filesystem::path& reference, const VisReference& ref,
+                                       const std::string& option);
+
 // Copies the reference's BSP and .prt into `dir`; returns the BSP's path there.
 std::filesystem::path stageVisInputs(const VisReference& ref, const std::filesystem::path& dir);
 
