@@ -34,10 +34,12 @@ struct FlowLevel {
     const Winding* pass = nullptr;  // nullptr at the base portal
     Winding sourceBuffer;
     std::array<Winding, 2> passBuffers;
-    // The separators between the previous level's source and pass, found once per level.
+    // The separators between the previous level's source and pass, one per edge at most, found
+    // edge by edge as candidates need them and kept for the level's other candidates: a
+    // candidate clipped away early never pays for the rest.
     std::array<std::array<Plane, kMaxSeparators>, 2> separators;
-    std::array<int, 2> separatorCount{};
-    bool separatorsFound = false;
+    std::array<std::array<bool, kMaxSeparators>, 2> separatorFound;
+    std::array<int, 2> edgesDone{};
 };
 
 struct FlowShared {
@@ -110,10 +112,20 @@ private:
         return s_.mode == FlowMode::Portal ? nullptr : s_.passages->row(from, k);
     }
 
-    // Chops `pass` by the separators of `next` on one side; nullptr when nothing is left.
-    const Winding* clipBySeparators(FlowLevel& next, int side, const VisPortal& candidate, const Winding* pass) {
-        for (int k = 0; k < next.separatorCount[side] && pass; ++k) {
-            const Plane& plane = next.separators[side][k];
+    // Chops `pass` by the separators of `next` on one side (0: edges of the previous source with
+    // points of the previous pass; 1: the other way round, flipped); nullptr when nothing is left.
+    const Winding* clipBySeparators(const FlowLevel& prev, FlowLevel& next, int side, const VisPortal& candidate,
+                                    const Winding* pass) {
+        const Winding& from = side == 0 ? *prev.source : *prev.pass;
+        const Winding& to = side == 0 ? *prev.pass : *prev.source;
+        for (int edge = 0; edge < from.count && pass; ++edge) {
+            if (edge == next.edgesDone[side]) {
+                next.separatorFound[side][static_cast<size_t>(edge)] =
+                    findSeparator(from, to, edge, side == 1, next.separators[side][static_cast<size_t>(edge)]);
+                ++next.edgesDone[side];
+            }
+            if (!next.separatorFound[side][static_cast<size_t>(edge)]) continue;
+            const Plane& plane = next.separators[side][static_cast<size_t>(edge)];
             const float d = plane.distanceTo(candidate.origin);
             if (d < -candidate.radius) return nullptr;  // entirely behind
             if (d > candidate.radius) continue;         // entirely in front
@@ -140,13 +152,8 @@ private:
         else if (!(cur.source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
             return nullptr;
         if (!prev.pass) return pass;  // the second cluster can only be blocked if coplanar
-        if (!cur.separatorsFound) {
-            cur.separatorCount[0] = findSeparators(*prev.source, *prev.pass, false, cur.separators[0].data());
-            cur.separatorCount[1] = findSeparators(*prev.pass, *prev.source, true, cur.separators[1].data());
-            cur.separatorsFound = true;
-        }
-        pass = clipBySeparators(cur, 0, p, pass);
-        return pass ? clipBySeparators(cur, 1, p, pass) : nullptr;
+        pass = clipBySeparators(prev, cur, 0, p, pass);
+        return pass ? clipBySeparators(prev, cur, 1, p, pass) : nullptr;
     }
 
     // Walk on into the cluster portal `from` leads to; `depth` is the level of the state on arrival.
@@ -156,7 +163,7 @@ private:
         if (scratch_.onStack[leaf]) return;
         scratch_.onStack[leaf] = 1;
         const std::vector<int>& leafPortals = s_.graph.leafs[leaf].portals;
-        level(depth + 1).separatorsFound = false;
+        level(depth + 1).edgesDone = {0, 0};
         for (size_t k = 0; k < leafPortals.size(); ++k) {
             // `level` may grow the scratch in deeper calls: fetch the levels again each time.
             FlowLevel& prev = *scratch_.levels[depth];

@@ -64,50 +64,55 @@ const Winding* chopWinding(const Winding* in, const Plane& split, Winding* out) 
     return out;
 }
 
-int findSeparators(const Winding& source, const Winding& pass, bool flip, Plane* out) {
+bool findSeparator(const Winding& source, const Winding& pass, int edge, bool flip, Plane& out) {
     // Side tests run on the unnormalised normal against the epsilon scaled by its length
     // (squared, so no square root until a separator is found).
     constexpr float kEpsilonSq = kOnEpsilon * kOnEpsilon;
-    int found = 0;
-    for (int i = 0; i < source.count; ++i) {
-        const int l = (i + 1) % source.count;
-        const Vec3 a = source.points[i];
-        const Vec3 edge = source.points[l] - a;
-        for (int j = 0; j < pass.count; ++j) {
-            // The plane through a, pass[j], source[l] as planeFromPoints orients it.
-            Vec3 normal = cross(edge, pass.points[j] - a);
-            const float lengthSq = dot(normal, normal);
-            if (lengthSq == 0) continue;
-            const float limitSq = kEpsilonSq * lengthSq;
-            auto beyond = [&](float d) { return d * d > limitSq; };
-            // Which side holds the source portal: the plane is turned so that source is behind.
-            bool sourceInFront = false;
-            int k = 0;
-            for (; k < source.count; ++k) {
-                if (k == i || k == l) continue;
-                const float d = dot(normal, source.points[k] - a);
-                if (!beyond(d)) continue;
-                sourceInFront = d > 0;
-                break;
-            }
-            if (k == source.count) continue;  // coplanar with the source portal
-            if (sourceInFront) normal = -normal;
-            // A separator has every point of pass on or in front of it, one strictly.
-            int inFront = 0;
-            for (k = 0; k < pass.count; ++k) {
-                if (k == j) continue;
-                const float d = dot(normal, pass.points[k] - a);
-                if (!beyond(d)) continue;
-                if (d < 0) break;
-                ++inFront;
-            }
-            if (k != pass.count || inFront == 0) continue;
-            normal = normal / std::sqrt(lengthSq);
-            const Plane plane{normal, dot(a, normal)};
-            out[found++] = flip ? plane.flipped() : plane;
+    const int i = edge;
+    const int l = (i + 1) % source.count;
+    const Vec3 a = source.points[i];
+    const Vec3 edgeVector = source.points[l] - a;
+    for (int j = 0; j < pass.count; ++j) {
+        // The plane through a, pass[j], source[l] as planeFromPoints orients it.
+        Vec3 normal = cross(edgeVector, pass.points[j] - a);
+        const float lengthSq = dot(normal, normal);
+        if (lengthSq == 0) continue;
+        const float limitSq = kEpsilonSq * lengthSq;
+        auto beyond = [&](float d) { return d * d > limitSq; };
+        // Which side holds the source portal: the plane is turned so that source is behind.
+        bool sourceInFront = false;
+        int k = 0;
+        for (; k < source.count; ++k) {
+            if (k == i || k == l) continue;
+            const float d = dot(normal, source.points[k] - a);
+            if (!beyond(d)) continue;
+            sourceInFront = d > 0;
             break;
         }
+        if (k == source.count) continue;  // coplanar with the source portal
+        if (sourceInFront) normal = -normal;
+        // A separator has every point of pass on or in front of it, one strictly.
+        int inFront = 0;
+        for (k = 0; k < pass.count; ++k) {
+            if (k == j) continue;
+            const float d = dot(normal, pass.points[k] - a);
+            if (!beyond(d)) continue;
+            if (d < 0) break;
+            ++inFront;
+        }
+        if (k != pass.count || inFront == 0) continue;
+        normal = normal / std::sqrt(lengthSq);
+        const Plane plane{normal, dot(a, normal)};
+        out = flip ? plane.flipped() : plane;
+        return true;
     }
+    return false;
+}
+
+int findSeparators(const Winding& source, const Winding& pass, bool flip, Plane* out) {
+    int found = 0;
+    for (int i = 0; i < source.count; ++i)
+        if (findSeparator(source, pass, i, flip, out[found])) ++found;
     return found;
 }
 

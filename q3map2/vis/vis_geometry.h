@@ -40,9 +40,13 @@ bool planeFromPoints(Plane& plane, Vec3 a, Vec3 b, Vec3 c);
 // Returns `in` when nothing is behind, nullptr when nothing is in front, else `out` filled.
 const Winding* chopWinding(const Winding* in, const Plane& split, Winding* out);
 
-// The planes through an edge of `source` and a point of `pass` that have all of `source` behind
-// and all of `pass` in front (flipped when `flip`), the first such point per edge. Returns the
-// count written to `out` (which holds kMaxSeparators).
+// The plane through edge `edge` (points edge, edge + 1) of `source` and the first point of `pass`
+// that has all of `source` behind and all of `pass` in front (flipped when `flip`). False when
+// no point of `pass` gives one.
+bool findSeparator(const Winding& source, const Winding& pass, int edge, bool flip, Plane& out);
+
+// findSeparator for every edge of `source`; returns the count written to `out` (which holds
+// kMaxSeparators).
 int findSeparators(const Winding& source, const Winding& pass, bool flip, Plane* out);
 
 // Centre of the points and the largest distance from it, for quick sphere-against-plane tests.
