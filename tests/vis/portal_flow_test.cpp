@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 namespace q3::vis {
@@ -21,11 +22,10 @@ namespace {
 // A square opening in the plane x = `x`, over y in [y0, y0 + 10] and z in [0, 10], from cluster
 // `a` into cluster `b` (points ordered so that the forward normal is +x).
 std::string opening(int a, int b, float x, float y0) {
-    auto point = [&](float y, float z) {
-        return "(" + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + " ) ";
-    };
-    return "4 " + std::to_string(a) + " " + std::to_string(b) + " 0 " + point(y0, 0) + point(y0 + 10, 0) +
-           point(y0 + 10, 10) + point(y0, 10) + "\n";
+    char line[160];
+    std::snprintf(line, sizeof line, "4 %d %d 0 (%g %g 0 ) (%g %g 0 ) (%g %g 10 ) (%g %g 10 )\n", a, b, x, y0, x,
+                  y0 + 10, x, y0 + 10, x, y0);
+    return line;
 }
 
 PortalFile zigZag() {
