@@ -11,6 +11,7 @@
 
 #include "json_stage.h"
 #include "light_stage.h"
+#include "vis_stage.h"
 #include "lightmap_export.h"
 
 #include <tbb/global_control.h>
@@ -37,6 +38,9 @@ std::vector<q3::cli::StageDescription> stageList() {
         if (s.name == "-info") {
             s.available = true;
             s.options = q3::cli::describe(q3::info::infoOptionTable());
+        } else if (s.name == "-vis") {
+            s.available = true;
+            s.options = q3::cli::describe(q3::vis::visOptionTable());
         } else if (s.name == "-light") {
             s.available = true;
             s.options = q3::cli::describe(q3::light::lightOptionTable());
@@ -147,6 +151,10 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);
         return q3::info::runInfoStage(options, common, log);
+    }
+    if (line.stage == "-vis") {
+        auto options = parseStageOptions(q3::vis::visOptionTable(), line, stages);
+        return q3::vis::runVisStage(options, common, log);
     }
     if (line.stage == "-light") {
         auto options = parseStageOptions(q3::light::lightOptionTable(), line, stages);

@@ -242,4 +242,11 @@ std::vector<Entity> parseEntities(std::string_view text, const std::string& name
 // An entity without pairs is written as "{\n}\n", so parse + unparse keeps the entity count.
 std::string unparseEntities(const std::vector<Entity>& entities);
 
+// The compiler's name and version, recorded in worldspawn's _q3map2_version.
+inline constexpr const char* kCompilerVersion = "q3map2-cpp 0.1.0 (q3map2 2.5.17n compatible)";
+// Records a stage run in worldspawn as q3map2's InjectCommandLine does: the stage switch and its
+// options appended to earlier stages' with "; " ("-bsp -meta; -vis -fast; -light -fast") in
+// _q3map2_cmdline, and _q3map2_version set.
+void injectCommandLine(Entity& worldspawn, const std::string& commandLine);
+
 }  // namespace q3::bsp

@@ -168,4 +168,11 @@ std::string unparseEntities(const std::vector<Entity>& entities) {
     return out;
 }
 
+void injectCommandLine(Entity& worldspawn, const std::string& commandLine) {
+    std::string value = worldspawn.value("_q3map2_cmdline");
+    value = value.empty() ? commandLine : value + "; " + commandLine;
+    worldspawn.set("_q3map2_cmdline", value);
+    worldspawn.set("_q3map2_version", kCompilerVersion);
+}
+
 }  // namespace q3::bsp

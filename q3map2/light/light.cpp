@@ -21,8 +21,6 @@
 namespace q3::light {
 namespace {
 
-constexpr const char* kVersion = "q3map2-cpp 0.1.0 (q3map2 2.5.17n compatible)";
-
 // Light entities of the .map source (q3map2 re-reads them because -bsp strips them from the BSP),
 // and the entities they may target.
 void loadMapLights(LightContext& ctx, Log& log) {
@@ -42,16 +40,6 @@ void loadMapLights(LightContext& ctx, Log& log) {
             ctx.mapTargets.push_back(std::move(entity));
     }
     log.info(strCat(ctx.mapLights.size(), " light entities read from ", mapPath.string()));
-}
-
-// Where the command line is recorded (q3map2 InjectCommandLine): the stage switch and its options,
-// appended to earlier stages' with "; " ("-bsp -meta; -vis -fast; -light -fast").
-void injectCommandLine(bsp::Entity& worldspawn, const std::string& commandLine) {
-    std::string value = worldspawn.value("_q3map2_cmdline");
-    const std::string& line = commandLine;
-    value = value.empty() ? line : value + "; " + line;
-    worldspawn.set("_q3map2_cmdline", value);
-    worldspawn.set("_q3map2_version", kVersion);
 }
 
 }  // namespace
@@ -92,7 +80,7 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
 void writeLitBsp(LightContext& ctx, Log& log) {
     // The stage may write more than once (-bounce stores between passes): record the command line once.
     std::vector<bsp::Entity> entities = ctx.entities;
-    injectCommandLine(entities[0], ctx.commandLine);
+    bsp::injectCommandLine(entities[0], ctx.commandLine);
     if (std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx)) markDeluxeWorldspawn(entities[0], *deluxe);
     ctx.bsp.entities = bsp::unparseEntities(entities);
     bsp::writeBsp(ctx.bspPath, ctx.bsp);

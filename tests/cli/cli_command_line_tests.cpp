@@ -93,7 +93,7 @@ TEST(CliCommandLine, CommonOptionAfterTheStage) {
 
 TEST(CliCommandLine, StagesThisBuildLacks) {
     EXPECT_EQ(splitError({"-bsp", "m.map"}), "-bsp is a q3map2 stage this build does not implement yet");
-    EXPECT_EQ(splitError({"-v", "-vis", "m.bsp"}), "-vis is a q3map2 stage this build does not implement yet");
+    EXPECT_EQ(splitError({"-v", "-analyze", "m.bsp"}), "-analyze is a q3map2 stage this build does not implement yet");
     EXPECT_EQ(splitError({"-minimap", "m.bsp"}), "-minimap is a q3map2 stage this build does not implement yet");
 }
 

@@ -91,7 +91,7 @@ TEST_F(CliExecutable, UsageErrorsExitWithTwoAndOneLine) {
 
 TEST_F(CliExecutable, WhatThisBuildLacksIsSaidExplicitly) {
     expectUsageError("-bsp -meta m.map", "-bsp is a q3map2 stage this build does not implement yet");
-    expectUsageError("-vis -saveprt m.map", "-vis is a q3map2 stage this build does not implement yet");
+    expectUsageError("-analyze m.bsp", "-analyze is a q3map2 stage this build does not implement yet");
     expectUsageError("-light -fast -thresh 2 m.bsp", "-thresh is a q3map2 option this build does not implement yet");
     expectUsageError("-light -randomsamples m.bsp", "-randomsamples is a q3map2 option this build does not implement yet");
     expectUsageError("-fs_pakpath /p -info m.bsp", "-fs_pakpath is a q3map2 option this build does not implement yet");

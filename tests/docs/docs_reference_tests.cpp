@@ -14,6 +14,7 @@
 #include "light_options.h"
 #include "lightmap_export.h"
 #include "sh_tools.h"
+#include "vis_stage.h"
 
 namespace q3::test {
 namespace {
@@ -55,6 +56,7 @@ TEST(DocsReference, EveryImplementedOptionIsInTheUserGuide) {
     expectDocumented(cli::describe(shtools::shImageOptionTable()), "-shimage");
     expectDocumented(cli::describe(shtools::shCubemapOptionTable()), "-shcubemap");
     expectDocumented(cli::describe(light::pictureStageOptionTable()), "-export/-import");
+    expectDocumented(cli::describe(vis::visOptionTable()), "-vis");
 }
 
 TEST(DocsReference, EveryStageOfThisBuildHasASection) {
@@ -62,7 +64,7 @@ TEST(DocsReference, EveryStageOfThisBuildHasASection) {
     std::istringstream in(userGuide());
     for (std::string line; std::getline(in, line);)
         if (line.rfind("### ", 0) == 0) headings.push_back(line);
-    for (const char* stage : {"-info", "-light", "-json", "-shprobe", "-shimage", "-shcubemap", "-export", "-import"}) {
+    for (const char* stage : {"-info", "-vis", "-light", "-json", "-shprobe", "-shimage", "-shcubemap", "-export", "-import"}) {
         bool found = false;
         for (const std::string& heading : headings) found = found || mentions(heading, stage);
         EXPECT_TRUE(found) << "no ### heading names `" << stage << "`";

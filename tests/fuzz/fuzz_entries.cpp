@@ -14,6 +14,7 @@ constexpr std::array kEntries = {
     FuzzEntry{"json", fuzzJson, "JSON reader: parseDocument with every value conversion, streaming readNumFile"},
     FuzzEntry{"json_pack", fuzzJsonPack, "-json -pack: packFolder on an unpacked folder with one file replaced"},
     FuzzEntry{"pk3", fuzzPk3, "pk3 archives: Pk3Archive table of contents and entries, Vfs look-ups and listings"},
+    FuzzEntry{"prt", fuzzPrt, ".prt reader: parsePortalFile; on small files the merges, base vis, passages and every flow mode"},
 };
 
 }  // namespace

@@ -48,6 +48,7 @@ void fuzzShader(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJson(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJsonPack(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPk3(std::span<const uint8_t> input, const FuzzContext& context);
+void fuzzPrt(std::span<const uint8_t> input, const FuzzContext& context);
 
 // The BSP whose unpacked JSON folder json_pack edits (and whose files seed the json targets): the
 // bspfile tests' synthetic map with an SH grid in lump 18, an extra BSPX lump, and no lightmap

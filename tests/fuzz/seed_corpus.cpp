@@ -270,6 +270,27 @@ void pk3Seeds(const fs::path& cache, const fs::path& out, const fs::path& scratc
     writeSeed(out / "pk3", "empty.pk3", makePk3(scratch / "empty.pk3", {}, true));
 }
 
+// Hand-written portal files: two rooms with a solid face, four rooms whose openings zig-zag
+// (hint and sky flags set), and a map without portals.
+void prtSeeds(const fs::path& out) {
+    auto opening = [](const char* clusters, int x, int y0) {
+        const std::string xs = std::to_string(x), y = std::to_string(y0), y1 = std::to_string(y0 + 10);
+        return std::string("4 ") + clusters + " (" + xs + " " + y + " 0 ) (" + xs + " " + y1 + " 0 ) (" + xs + " " + y1 +
+               " 10 ) (" + xs + " " + y + " 10 ) \n";
+    };
+    writeSeed(out / "prt", "two-rooms.prt",
+              "PRT1\n2\n1\n1\n" + opening("0 1 0", 0, 0) + "3 1 (5 0 0 ) (5 10 0 ) (5 10 10 ) \n");
+    const std::string zigZag =
+        "PRT1\n4\n3\n0\n" + opening("0 1 1", 0, 0) + opening("1 2 0", 10, 30) + opening("2 3 2", 20, 0);
+    const std::string sideBySide = "PRT1\n2\n2\n0\n" + opening("0 1 0", 0, 0) + opening("0 1 0", 0, 10);
+    writeSeed(out / "prt", "zigzag.prt", zigZag);
+    writeSeed(out / "prt", "side-by-side.prt", sideBySide);
+    // A leading "\v" or "\r" turns on -merge / -mergeportals with -hint (see fuzzPrt).
+    writeSeed(out / "prt", "zigzag-merge-hint.prt", "\v" + zigZag);
+    writeSeed(out / "prt", "side-by-side-mergeportals.prt", "\r" + sideBySide);
+    writeSeed(out / "prt", "no-portals.prt", "PRT1\n1\n0\n0\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -287,6 +308,7 @@ int main(int argc, char** argv) {
         textSeeds(cache, out);
         jsonSeeds(out, scratch);
         pk3Seeds(cache, out, scratch);
+        prtSeeds(out);
         fs::remove_all(scratch);
         for (const q3::fuzz::FuzzEntry& entry : q3::fuzz::fuzzEntries()) {
             size_t count = 0;

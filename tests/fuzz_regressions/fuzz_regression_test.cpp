@@ -81,4 +81,18 @@ TEST(FuzzEntries, JsonPackReplacesOneFileAndRestoresIt) {
     EXPECT_FALSE(fs::exists(context.scratch / "json_pack" / "escape.json"));
 }
 
+// Accepted portal files go through every vis pass (a leading "\v" adds -hint and -merge).
+TEST(FuzzEntries, PrtEntryRunsThePassesOnSmallFiles) {
+    const FuzzContext context{q3::test::tempDir()};
+    const std::string zigZag =
+        "PRT1\n4\n3\n0\n"
+        "4 0 1 0 (0 0 0 ) (0 10 0 ) (0 10 10 ) (0 0 10 )\n"
+        "4 1 2 1 (10 30 0 ) (10 40 0 ) (10 40 10 ) (10 30 10 )\n"
+        "4 2 3 2 (20 0 0 ) (20 10 0 ) (20 10 10 ) (20 0 10 )\n";
+    run("prt", bytesOf(zigZag), context);
+    run("prt", bytesOf("\v" + zigZag), context);
+    run("prt", bytesOf("\r" + zigZag), context);
+    run("prt", bytesOf("PRT1\n4\n3\n0\n4 0 9 0"), context);  // rejected: cluster out of range
+}
+
 }  // namespace

@@ -1,0 +1,248 @@
+
+
+
+
+#include "portal_flow.h"
+
+#include "cluster_vis.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+
+namespace q3::vis {
+
+namespace {
+
+// One step of the walk: the state after passing through one more portal.
+struct FlowLevel {
+    explicit FlowLevel(size_t words) : mightSee(words) {}
+
+    // Clusters still possibly visible. Only words [first, last) may be non-zero (the rest is
+    // stale): deep in the walk the set is sparse, and the bit operations skip what is empty.
+    std::vector<uint64_t> mightSee;
+    size_t first = 0, last = 0;
+    bool mightSeeCluster(size_t c) const {
+        const size_t w = c >> 6;
+        return w >= first && w < last && ((mightSee[w] >> (c & 63)) & 1u);
+    }
+    const Winding* source = nullptr;
+    const Winding* pass = nullptr;  // nullptr at the base portal
+    Winding sourceBuffer;
+    std::array<Winding, 2> passBuffers;
+    // The separators between the previous level's source and pass, one per edge at most, found
+    // edge by edge as candidates need them and kept for the level's other candidates: a
+    // candidate clipped away early never pays for the rest.
+    std::array<std::array<Plane, kMaxSeparators>, 2> separators;
+    std::array<std::array<bool, kMaxSeparators>, 2> separatorFound;
+    std::array<int, 2> edgesDone{};
+};
+
+struct FlowShared {
+    const VisGraph& graph;
+    const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
+    const Passages* passages;
+    FlowMode mode;
+    BitMatrix& clusterVis;           // per portal: the clusters it sees (the result)
+    const std::vector<int>& waveOf;  // per portal
+};
+
+// The scratch of one thread, reused from portal to portal.
+struct FlowScratch {
+    std::vector<std::unique_ptr<FlowLevel>> levels;
+    std::vector<uint8_t> onStack;  // per cluster: on the current chain
+};
+
+class PortalWalk {
+public:
+    PortalWalk(const FlowShared& shared, FlowScratch& scratch, int basePortal)
+        : s_(shared), scratch_(scratch), baseIndex_(basePortal), base_(shared.graph.portals[static_cast<size_t>(basePortal)]),
+          vis_(shared.clusterVis.row(static_cast<size_t>(basePortal))), words_(shared.clusterVis.words()),
+          currentWave_(shared.waveOf[static_cast<size_t>(basePortal)]) {}
+
+    void run() {
+        FlowLevel& head = level(0);
+        std::copy_n(s_.floodClusters.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
+        head.first = 0;
+        head.last = words_;
+        head.source = &base_.winding;
+        head.pass = nullptr;
+        scratch_.onStack.assign(s_.graph.leafs.size(), 0);
+        setBit(vis_, static_cast<size_t>(base_.leaf));
+        enter(baseIndex_, 0);
+    }
+
+private:
+    FlowLevel& level(size_t depth) {
+        while (scratch_.levels.size() <= depth) scratch_.levels.push_back(std::make_unique<FlowLevel>(words_));
+        return *scratch_.levels[depth];
+    }
+
+    // Finished results of earlier waves prune harder than the base flood.
+    const uint64_t* mask(int portal) const {
+        const size_t p = static_cast<size_t>(portal);
+        return s_.waveOf[p] < currentWave_ ? s_.clusterVis.row(p) : s_.floodClusters.row(p);
+    }
+
+    // next = prev & mask [& passage]; true when next holds a cluster not yet marked visible.
+    bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
+        const uint64_t* m = mask(portal);
+        uint64_t more = 0;
+        size_t first = prev.last, last = prev.first;
+        for (size_t w = prev.first; w < prev.last; ++w) {
+            uint64_t v = prev.mightSee[w] & m[w];
+            if (passage) v &= passage[w];
+            next.mightSee[w] = v;
+            if (v) {
+                first = std::min(first, w);
+                last = w + 1;
+            }
+            more |= v & ~vis_[w];
+        }
+        next.first = first;
+        next.last = std::max(first, last);
+        return more != 0;
+    }
+
+    const uint64_t* passageRow(int from, size_t k) const {
+        return s_.mode == FlowMode::Portal ? nullptr : s_.passages->row(from, k);
+    }
+
+    // Chops `pass` by the separators of `next` on one side (0: edges of the previous source with
+    // points of the previous pass; 1: the other way round, flipped); nullptr when nothing is left.
+    const Winding* clipBySeparators(const FlowLevel& prev, FlowLevel& next, int side, const VisPortal& candidate,
+                                    const Winding* pass) {
+        const Winding& from = side == 0 ? *prev.source : *prev.pass;
+        const Winding& to = side == 0 ? *prev.pass : *prev.source;
+        for (int edge = 0; edge < from.count && pass; ++edge) {
+            if (edge == next.edgesDone[side]) {
+                next.separatorFound[side][static_cast<size_t>(edge)] =
+                    findSeparator(from, to, edge, side == 1, next.separators[side][static_cast<size_t>(edge)]);
+                ++next.edgesDone[side];
+            }
+            if (!next.separatorFound[side][static_cast<size_t>(edge)]) continue;
+            const Plane& plane = next.separators[side][static_cast<size_t>(edge)];
+            const float d = plane.distanceTo(candidate.origin);
+            if (d < -candidate.radius) return nullptr;  // entirely behind
+            if (d > candidate.radius) continue;         // entirely in front
+            Winding* out = (pass == &next.passBuffers[0]) ? &next.passBuffers[1] : &next.passBuffers[0];
+            pass = chopWinding(pass, plane, out);
+        }
+        return pass;
+    }
+
+    // The part of `p` the walk can see through, or nullptr: in front of the base portal, seen from
+    // the part of the source behind p, and inside the separators of the previous source and pass.
+    const Winding* clipCandidate(const FlowLevel& prev, FlowLevel& cur, const VisPortal& p) {
+        const float dp = base_.plane.distanceTo(p.origin);
+        const Winding* pass;
+        if (dp < -p.radius) return nullptr;
+        if (dp > p.radius)
+            pass = &p.winding;
+        else if (!(pass = chopWinding(&p.winding, base_.plane, &cur.passBuffers[0])))
+            return nullptr;
+        const float ds = p.plane.distanceTo(base_.origin);
+        if (ds > base_.radius) return nullptr;
+        if (ds < -base_.radius)
+            cur.source = prev.source;
+        else if (!(cur.source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
+            return nullptr;
+        if (!prev.pass) return pass;  // the second cluster can only be blocked if coplanar
+        pass = clipBySeparators(prev, cur, 0, p, pass);
+        return pass ? clipBySeparators(prev, cur, 1, p, pass) : nullptr;
+    }
+
+    // Walk on into the cluster portal `from` leads to; `depth` is the level of the state on arrival.
+    void enter(int from, size_t depth) {
+        const size_t leaf = static_cast<size_t>(s_.graph.portals[static_cast<size_t>(from)].leaf);
+        // Clusters are convex (q3map2 merges only convex ones): a line never enters one twice.
+        if (scratch_.onStack[leaf]) return;
+        scratch_.onStack[leaf] = 1;
+        const std::vector<int>& leafPortals = s_.graph.leafs[leaf].portals;
+        level(depth + 1).edgesDone = {0, 0};
+        for (size_t k = 0; k < leafPortals.size(); ++k) {
+            // `level` may grow the scratch in deeper calls: fetch the levels again each time.
+            FlowLevel& prev = *scratch_.levels[depth];
+            FlowLevel& cur = *scratch_.levels[depth + 1];
+            const int pnum = leafPortals[k];
+            const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
+            if (p.removed || !prev.mightSeeCluster(static_cast<size_t>(p.leaf))) continue;
+            // Nothing new to find behind p: its own cluster is in the set, so this also keeps
+            // every cluster not yet marked.
+            if (!narrow(prev, cur, pnum, passageRow(from, k))) continue;
+            if (s_.mode == FlowMode::Passage) {
+                setBit(vis_, static_cast<size_t>(p.leaf));
+                enter(pnum, depth + 1);
+                continue;
+            }
+            const Winding* pass = clipCandidate(prev, cur, p);
+            if (!pass) continue;
+            setBit(vis_, static_cast<size_t>(p.leaf));
+            cur.pass = pass;
+            enter(pnum, depth + 1);
+        }
+        scratch_.onStack[leaf] = 0;
+    }
+
+    const FlowShared& s_;
+    FlowScratch& scratch_;
+    int baseIndex_;
+    const VisPortal& base_;
+    uint64_t* vis_;
+    size_t words_;
+    int currentWave_;
+};
+
+}  // namespace
+
+std::vector<size_t> flowWaveBounds(size_t count) {
+    // Waves grow with the work done: each is 1/32 of the portals before it, at least 16, so
+    // that late (large) portals find most earlier results finished while both cores stay busy.
+    std::vector<size_t> bounds{0};
+    while (bounds.back() < count) bounds.push_back(std::min(count, bounds.back() + std::max<size_t>(16, bounds.back() / 32)));
+    return bounds;
+}
+
+BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Passages* passages,
+                            const FlowOptions& options, const std::function<void()>& advance) {
+    if (options.mode != FlowMode::Portal && !passages)
+        throw std::logic_error("computePortalFlow: the passage modes need passages");
+    const size_t n = graph.portals.size();
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    if (options.sort)
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int a, int b) { return base.mightSee[static_cast<size_t>(a)] < base.mightSee[static_cast<size_t>(b)]; });
+    const std::vector<size_t> bounds = flowWaveBounds(n);
+    std::vector<int> waveOf(n, 0);
+    for (size_t w = 0; w + 1 < bounds.size(); ++w)
+        for (size_t i = bounds[w]; i < bounds[w + 1]; ++i) waveOf[static_cast<size_t>(order[i])] = static_cast<int>(w);
+
+    const BitMatrix floodClusters = portalClusterSets(graph, base.flood);
+    BitMatrix clusterVis(n, static_cast<size_t>(graph.clusterCount));
+    FlowShared shared{graph, floodClusters, passages, options.mode, clusterVis, waveOf};
+    tbb::enumerable_thread_specific<FlowScratch> scratch;
+    for (size_t w = 0; w + 1 < bounds.size(); ++w) {
+        // Within a wave the largest first, so that the longest walks do not start last.
+        std::vector<int> wave(order.begin() + static_cast<std::ptrdiff_t>(bounds[w]),
+                              order.begin() + static_cast<std::ptrdiff_t>(bounds[w + 1]));
+        std::reverse(wave.begin(), wave.end());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, wave.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                const int portal = wave[i];
+                if (!graph.portals[static_cast<size_t>(portal)].removed) {
+                    PortalWalk walk(shared, scratch.local(), portal);
+                    walk.run();
+                }
+                if (advance) advance();
+            }
+        }, tbb::simple_partitioner());
+    }
+    return clusterVis;
+}
+
+}  // namespace q3::vis
