@@ -1,14 +1,21 @@
 // Small hand-made .map texts and the shader set they use, for the -bsp step tests.
 #pragma once
 
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "bsp_brushes.h"
+#include "file_io.h"
 #include "log.h"
 #include "map_file.h"
 #include "shader_info.h"
 #include "shader_loader.h"
+#include "world_structure.h"
 
 namespace q3::bsp::test {
 
@@ -126,6 +133,31 @@ inline std::string pointEntity(const std::string& classname, DVec3 origin) {
     std::snprintf(text, sizeof text, "{\n\"classname\" \"%s\"\n\"origin\" \"%g %g %g\"\n}\n", classname.c_str(), origin.x,
                   origin.y, origin.z);
     return text;
+}
+
+// Parses, loads and runs the world structure steps on a .map text.
+struct CompiledMap {
+    map::MapFile file;
+    LoadedMap map;
+    WorldStructure world;
+};
+
+inline std::unique_ptr<CompiledMap> compileMapText(const std::string& text, WorldStructureOptions options = {},
+                                                   MapLoadOptions load = {}) {
+    static Log log(false);
+    static const ShaderTable shaders = commonShaders(log);
+    auto out = std::make_unique<CompiledMap>();
+    // Q3MAP_BSP_DUMP_MAPS=<dir> keeps every map text, to compile it with the reference q3map2.
+    if (const char* dump = std::getenv("Q3MAP_BSP_DUMP_MAPS")) {
+        static int serial = 0;
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        writeFileAtomic(std::filesystem::path(dump) / (std::string(info->name()) + "_" + std::to_string(serial++) + ".map"),
+                        text);
+    }
+    out->file = map::parseMap(text, "test.map");
+    out->map = loadMapForBsp(out->file, shaders, load, log);
+    out->world = buildWorldStructure(out->map, options, log);
+    return out;
 }
 
 }  // namespace q3::bsp::test
