@@ -5,7 +5,7 @@
 #include "bsp_brushes.h"
 #include "shader_info.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // Surface flags a bevel inherits from the sides it touches (footstep and damage behaviour).
@@ -125,4 +125,4 @@ std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes) {
     return {box, edge};
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

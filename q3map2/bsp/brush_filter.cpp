@@ -4,7 +4,7 @@
 
 #include "shader_info.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // How far a brush must reach past a plane to count as being on that side (q3map2 uses 0.1 where
@@ -168,4 +168,4 @@ int filterDetailBrushesIntoTree(const std::vector<Brush>& brushes, Tree& tree, c
     return filterBrushes(brushes, tree, planes, true);
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -9,7 +9,7 @@
 #include "bsp_tree.h"
 #include "plane_set.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 // A piece of a brush while it is split down the tree: its sides' planes and windings.
 struct BrushFragment {
@@ -33,4 +33,4 @@ int filterStructuralBrushesIntoTree(const std::vector<Brush>& brushes, Tree& tre
 // The same for detail brushes (they only add leaf references).
 int filterDetailBrushesIntoTree(const std::vector<Brush>& brushes, Tree& tree, const PlaneSet& planes);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -7,7 +7,7 @@
 #include "script.h"
 #include "shader_info.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // Brushes must lie strictly inside this box (q3map2 common/maxworld.h).
@@ -249,4 +249,4 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
     return out;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -18,7 +18,7 @@ class ShaderTable;
 struct ShaderInfo;
 }  // namespace q3
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 struct BrushSide {
     int planeNum = -1;
@@ -96,4 +96,4 @@ std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes);
 // "x y z" as q3map2 reads vectors from keys (missing numbers are 0).
 DVec3 parseVectorKey(const std::string& text);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

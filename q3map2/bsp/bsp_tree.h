@@ -8,7 +8,7 @@
 #include "dvec3.h"
 #include "winding.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 inline constexpr int kLeafPlane = -1;  // planeNum of a leaf
 
@@ -83,4 +83,4 @@ struct Tree {
     int leafCount() const;
 };
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -5,7 +5,7 @@
 
 #include "shader_info.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // Faces are cut with a doubled epsilon so that near-coplanar faces are not split into slivers.
@@ -174,4 +174,4 @@ Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize
     return tree;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

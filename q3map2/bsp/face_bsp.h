@@ -12,7 +12,7 @@
 #include "plane_set.h"
 #include "winding.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 struct BspFace {
     Winding winding;
@@ -46,4 +46,4 @@ struct FaceBspCounts {
 Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize& blockSize,
                    FaceBspCounts* counts = nullptr);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

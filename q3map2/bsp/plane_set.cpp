@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // q3map2 rounds near-axial normals with a fixed threshold before the (configurable) epsilon.
@@ -119,4 +119,4 @@ void PlaneSet::addToHash(int index) {
     hashHead_[size_t(bin)] = index;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -10,7 +10,7 @@
 
 #include "dvec3.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 enum PlaneType : int { PlaneX = 0, PlaneY = 1, PlaneZ = 2, PlaneNonAxial = 3 };
 
@@ -65,4 +65,4 @@ private:
     std::array<int, kHashSize> hashHead_;  // per bin: most recent plane, -1 when empty
 };
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

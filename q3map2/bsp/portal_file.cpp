@@ -6,7 +6,7 @@
 #include "shader_info.h"
 #include "tree_portals.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 constexpr double kIntegerTolerance = 0.001;
@@ -111,4 +111,4 @@ std::string portalFileText(const Tree& tree, const ClusterCounts& counts) {
     return out;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

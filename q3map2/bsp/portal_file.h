@@ -5,7 +5,7 @@
 
 #include "bsp_tree.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 struct ClusterCounts {
     int clusters = 0;    // "visclusters"
@@ -24,4 +24,4 @@ ClusterCounts numberClusters(Tree& tree);
 // written as integers, others with %f.
 std::string portalFileText(const Tree& tree, const ClusterCounts& counts);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -6,7 +6,7 @@
 #include "shader_info.h"
 #include "tree_portals.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 int leafAt(const Tree& tree, const PlaneSet& planes, const DVec3& point) {
@@ -136,4 +136,4 @@ int floodAreas(Tree& tree) {
     return areas;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -15,7 +15,7 @@ namespace q3 {
 class Log;
 }
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 enum class FloodResult {
     Empty,   // no point entity stands in an open leaf
@@ -48,4 +48,4 @@ std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entitie
 // number of areas.
 int floodAreas(Tree& tree);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -4,7 +4,7 @@
 
 #include "shader_info.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // Padding around the tree bounds so that no leaf has zero volume.
@@ -191,4 +191,4 @@ bool portalPassable(const Tree& tree, const Portal& portal) {
     return !tree.node(portal.nodes[0]).opaque && !tree.node(portal.nodes[1]).opaque;
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

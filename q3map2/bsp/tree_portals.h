@@ -5,7 +5,7 @@
 #include "bsp_tree.h"
 #include "plane_set.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 struct PortalCounts {
     int tinyPortals = 0;  // discarded: fewer than three edges longer than 0.2
@@ -18,4 +18,4 @@ PortalCounts makeTreePortals(Tree& tree, const PlaneSet& planes);
 // an antiportal.
 bool portalPassable(const Tree& tree, const Portal& portal);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

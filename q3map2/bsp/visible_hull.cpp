@@ -1,6 +1,6 @@
 #include "visible_hull.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 void clipSideIntoTree(const Winding& w, BrushSide& side, int nodeIndex, const Tree& tree, const PlaneSet& planes) {
@@ -36,4 +36,4 @@ void clipSidesIntoTree(std::vector<Brush>& brushes, const Tree& tree, const Plan
     }
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

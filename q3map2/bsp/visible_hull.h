@@ -10,9 +10,9 @@
 #include "bsp_tree.h"
 #include "plane_set.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 // Sets visibleHull for every side of `brushes` with a winding.
 void clipSidesIntoTree(std::vector<Brush>& brushes, const Tree& tree, const PlaneSet& planes);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

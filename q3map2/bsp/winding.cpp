@@ -3,7 +3,7 @@
 #include <cfloat>
 #include <cmath>
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 // Clipping never trusts a point closer than this to the plane to be on one side: it would only
@@ -263,4 +263,4 @@ bool coplanarWindingsIntersect(const Winding& a, const Winding& b, const DVec3& 
     return !separatedByEdgeOf(a, b) && !separatedByEdgeOf(b, a);
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -8,7 +8,7 @@
 
 #include "dvec3.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 using Winding = std::vector<DVec3>;
 
@@ -52,4 +52,4 @@ void addWindingToConvexHull(const Winding& w, Winding& hull, const DVec3& normal
 // True when two windings on the same plane (with `normal`) overlap by more than a sliver.
 bool coplanarWindingsIntersect(const Winding& a, const Winding& b, const DVec3& normal);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -8,7 +8,7 @@
 #include "script.h"
 #include "visible_hull.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 std::string counted(int value, const char* what) {
@@ -135,4 +135,4 @@ void writeWorldStructureFiles(const WorldStructure& world, const std::filesystem
     if (!world.leaked) writeFileAtomic(prt, world.portalFile);
 }
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

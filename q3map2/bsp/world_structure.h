@@ -19,7 +19,7 @@ namespace q3 {
 class Log;
 }
 
-namespace q3::bsp {
+namespace q3::bspstage {
 
 struct WorldStructureOptions {
     bool deep = false;      // -deep: detail faces split the tree too (at low priority)
@@ -58,4 +58,4 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
 // q3map2 does.
 void writeWorldStructureFiles(const WorldStructure& world, const std::filesystem::path& mapPath);
 
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

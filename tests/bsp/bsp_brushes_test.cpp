@@ -2,7 +2,7 @@
 
 #include "bsp_test_maps.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 using test::boxBrush;
@@ -128,4 +128,4 @@ TEST(BspBrushes, DegenerateAndMirroredBrushesAreDropped) {
 }
 
 }  // namespace
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

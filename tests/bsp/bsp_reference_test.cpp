@@ -28,7 +28,7 @@
 #include "vfs.h"
 #include "world_structure.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 namespace fs = std::filesystem;
@@ -141,4 +141,4 @@ INSTANTIATE_TEST_SUITE_P(Oacmp, BspReferenceCounts, ::testing::ValuesIn(test::oa
 TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(test::oacmpMapSources().size(), 13u); }
 
 }  // namespace
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

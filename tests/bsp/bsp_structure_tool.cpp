@@ -16,7 +16,7 @@
 int main(int argc, char** argv) {
     q3::Log log;
     q3::VfsOptions vfsOptions;
-    q3::bsp::WorldStructureOptions options;
+    q3::bspstage::WorldStructureOptions options;
     std::string mapPath;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -37,9 +37,9 @@ int main(int argc, char** argv) {
         q3::Vfs vfs(vfsOptions, log);
         const q3::ShaderTable shaders = q3::loadShaderTable(vfs, log);
         const q3::map::MapFile file = q3::map::loadMap(mapPath);
-        q3::bsp::LoadedMap map = q3::bsp::loadMapForBsp(file, shaders, {}, log);
-        const q3::bsp::WorldStructure world = q3::bsp::buildWorldStructure(map, options, log);
-        q3::bsp::writeWorldStructureFiles(world, mapPath);
+        q3::bspstage::LoadedMap map = q3::bspstage::loadMapForBsp(file, shaders, {}, log);
+        const q3::bspstage::WorldStructure world = q3::bspstage::buildWorldStructure(map, options, log);
+        q3::bspstage::writeWorldStructureFiles(world, mapPath);
         std::printf("brushes %d detail %d planes %d\n", map.counts.worldBrushes, map.counts.detailBrushes,
                     map.planes.size());
         std::printf("first: faces %d leafs %d filled %d\n", world.first.faceBsp.faces, world.first.faceBsp.leafs,

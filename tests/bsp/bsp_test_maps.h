@@ -17,7 +17,7 @@
 #include "shader_loader.h"
 #include "world_structure.h"
 
-namespace q3::bsp::test {
+namespace q3::bspstage::test {
 
 // The common shaders as GtkRadiant's common.shader defines them (the ones these tests use).
 inline ShaderTable commonShaders(Log& log) {
@@ -160,4 +160,4 @@ inline std::unique_ptr<CompiledMap> compileMapText(const std::string& text, Worl
     return out;
 }
 
-}  // namespace q3::bsp::test
+}  // namespace q3::bspstage::test

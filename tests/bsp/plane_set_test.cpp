@@ -2,7 +2,7 @@
 
 #include "plane_set.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 TEST(PlaneSet, PairsAreFlippedTwinsWithPositiveAxialPlanesEven) {
@@ -71,4 +71,4 @@ TEST(PlaneSet, RejectsPointsOffTheCandidate) {
 }
 
 }  // namespace
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

@@ -2,7 +2,7 @@
 
 #include "winding.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 Winding square(double size, double z = 0) {
@@ -93,4 +93,4 @@ TEST(Winding, CoplanarOverlap) {
 }
 
 }  // namespace
-}  // namespace q3::bsp
+}  // namespace q3::bspstage

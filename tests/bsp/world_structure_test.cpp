@@ -7,7 +7,7 @@
 
 #include "bsp_test_maps.h"
 
-namespace q3::bsp {
+namespace q3::bspstage {
 namespace {
 
 using test::boxBrush;
@@ -214,4 +214,4 @@ TEST(WorldStructure, SameInputGivesTheSameOutput) {
 }
 
 }  // namespace
-}  // namespace q3::bsp
+}  // namespace q3::bspstage
