@@ -73,7 +73,7 @@ bool isNewSupportingPlane(Brush& brush, const DPlane& plane, uint32_t edgeSurfac
         if (side.winding.empty()) continue;
         double minBack = 0;
         for (const DVec3& p : side.winding) {
-            const double d = plane.distanceTo(p);
+            const double d = double(dot(plane.normal.toFloat(), p.toFloat()) - float(plane.dist));
             if (d > kBevelEpsilon) return false;
             minBack = std::min(minBack, d);
         }
@@ -89,18 +89,23 @@ int addEdgeBevels(Brush& brush, PlaneSet& planes) {
         const Winding w = brush.sides[i].winding;  // copied: sides grow below
         const uint32_t surfaceFlags = brush.sides[i].surfaceFlags;
         for (size_t j = 0; j < w.size(); ++j) {
-            DVec3 edge = w[j] - w[(j + 1) % w.size()];
-            const double len = length(edge);
-            if (len < 0.5) continue;
-            edge = roundToFloat(edge / len);
-            snapNormal(edge, planes.epsilons().normal);
-            if (isAxialDirection(edge)) continue;
+            // In 32-bit floats like q3map2: candidates touching a vertex are accepted or refused
+            // by 0.1-unit tests whose outcome can depend on the last bits.
+            Vec3 edge = w[j].toFloat() - w[(j + 1) % w.size()].toFloat();
+            const float len = length(edge);
+            if (len < 0.5f) continue;
+            edge = edge / len;
+            DVec3 snapped(edge);
+            snapNormal(snapped, planes.epsilons().normal);
+            edge = snapped.toFloat();
+            if (isAxialDirection(DVec3(edge))) continue;
             for (int axis = 0; axis < 3; ++axis) {
                 for (int dir = -1; dir <= 1; dir += 2) {
-                    DVec3 normal = cross(edge, DVec3::axis(axis, dir));
-                    if (length(normal) < 0.5) continue;
-                    normal = roundToFloat(normalize(normal));
-                    const DPlane plane{normal, double(float(dot(w[j], normal)))};
+                    Vec3 normal = cross(edge, DVec3::axis(axis, dir).toFloat());
+                    const float normalLength = length(normal);
+                    if (normalLength < 0.5f) continue;
+                    normal = normal / normalLength;
+                    const DPlane plane{DVec3(normal), double(dot(w[j].toFloat(), normal))};
                     if (!isNewSupportingPlane(brush, plane, surfaceFlags, planes)) continue;
                     BrushSide bevel;
                     const DVec3 point[1] = {w[j]};

@@ -61,17 +61,26 @@ void keepLargestAreaportalSide(Brush& b, Log& log) {
         if (&s != largest) s.compileFlags &= ~compileflags::AreaPortal;
 }
 
-Brush brushFromMap(const map::MapBrush& source, int mapEntityNum, const ShaderTable& shaders, PlaneSet& planes) {
+const ShaderInfo& lookUpShader(const std::string& texture, const ShaderTable& shaders, LoadedMap& out) {
+    const std::string name = map::shaderNameForTexture(texture);
+    const ShaderInfo& shader = shaders.find(name);
+    if (!shader.explicitScript) out.implicitShaderNames.try_emplace(&shader, name);
+    return shader;
+}
+
+Brush brushFromMap(const map::MapBrush& source, int mapEntityNum, const ShaderTable& shaders, LoadedMap& out) {
+    PlaneSet& planes = out.planes;
     Brush b;
     b.mapEntityNum = mapEntityNum;
     b.brushNum = source.primitiveNum;
     for (const map::BrushFace& face : source.faces) {
         BrushSide side;
-        const DVec3 p0(face.points[0]), p1(face.points[1]), p2(face.points[2]);
+        auto exact = [&](int i) { return DVec3{face.exactPoints[i][0], face.exactPoints[i][1], face.exactPoints[i][2]}; };
+        const DVec3 p0 = exact(0), p1 = exact(1), p2 = exact(2);
         side.planeNum = planes.fromPoints(p0, p1, p2);
         const DVec3 normal = normalize(cross(p2 - p0, p1 - p0));
         side.exactPlane = {normal, dot(p0, normal)};
-        const ShaderInfo& shader = shaders.find(map::shaderNameForTexture(face.texture));
+        const ShaderInfo& shader = lookUpShader(face.texture, shaders, out);
         side.shader = &shader;
         side.contentFlags = shader.contentFlags;
         side.surfaceFlags = shader.surfaceFlags;
@@ -97,8 +106,13 @@ void offsetBrushes(std::vector<Brush>& brushes, const DVec3& offset, PlaneSet& p
 
 }  // namespace
 
+const std::string& LoadedMap::shaderName(const ShaderInfo& shader) const {
+    auto it = implicitShaderNames.find(&shader);
+    return it != implicitShaderNames.end() ? it->second : shader.name;
+}
+
 bool BspEntity::isPointEntity() const {
-    return brushes.empty() && patchCount == 0 && !equalsNoCase(classname, "_decal");
+    return brushes.empty() && patches.empty() && !equalsNoCase(classname, "_decal");
 }
 
 DVec3 parseVectorKey(const std::string& text) {
@@ -177,13 +191,22 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         const bool isWorld = out.entities.empty();
         const bool isGroup = !isWorld && equalsNoCase(ent.classname, "func_group");
         ent.origin = parseVectorKey(source.value("origin"));
-        ent.patchCount = options.noCurves ? 0 : int(source.patches.size());
+        if (!options.noCurves)
+            for (const map::MapPatch& p : source.patches) ent.patches.push_back(&p);
+        // Shaders are looked up in file order (brushes and patches interleaved): the first
+        // spelling of a shader without a script names it.
+        size_t nextPatch = 0;
+        auto lookUpPatchShadersBefore = [&](int primitiveNum) {
+            for (; nextPatch < ent.patches.size() && ent.patches[nextPatch]->primitiveNum < primitiveNum; ++nextPatch)
+                lookUpShader(ent.patches[nextPatch]->texture, shaders, out);
+        };
 
         bool haveOriginBrush = false;
         DVec3 originBrushCenter;
         std::vector<Brush> opaque, translucent;  // opaque kept latest-first below
         for (const map::MapBrush& mb : source.brushes) {
-            Brush b = brushFromMap(mb, source.number, shaders, out.planes);
+            lookUpPatchShadersBefore(mb.primitiveNum);
+            Brush b = brushFromMap(mb, source.number, shaders, out);
             if (!removeDuplicatePlanes(b, log)) continue;
             setBrushContents(b, options.fullDetail, log);
             if (options.noDetail && (b.compileFlags & compileflags::Detail)) continue;
@@ -213,17 +236,20 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
             if (b.compileFlags & compileflags::AreaPortal) ++out.counts.areaportals;
             (b.opaque ? opaque : translucent).push_back(std::move(b));
         }
+        lookUpPatchShadersBefore(source.primitiveCount());
         for (auto it = opaque.rbegin(); it != opaque.rend(); ++it) ent.brushes.push_back(std::move(*it));
         for (Brush& b : translucent) ent.brushes.push_back(std::move(b));
 
         if (haveOriginBrush) {
+            ent.hasOriginBrush = true;
             ent.origin = ent.origin + originBrushCenter;
             offsetBrushes(ent.brushes, originBrushCenter, out.planes);
         }
         if (isGroup) {
             // func_group is an editor convenience: its brushes belong to the world, shifted by
-            // the group's own origin key.
-            offsetBrushes(ent.brushes, -ent.origin, out.planes);
+            // the group's own origin key. Without one the planes stay as found: looking them up
+            // again could land on a neighbouring plane within the epsilons, which q3map2 does not.
+            if (ent.origin != DVec3{}) offsetBrushes(ent.brushes, -ent.origin, out.planes);
             std::vector<Brush>& world = out.entities.front().brushes;
             std::vector<Brush> head;
             for (Brush& b : ent.brushes) {
@@ -233,7 +259,9 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
                     world.push_back(std::move(b));
             }
             world.insert(world.begin(), std::make_move_iterator(head.begin()), std::make_move_iterator(head.end()));
-            out.entities.front().patchCount += ent.patchCount;
+            // q3map2 prepends the group's patches to the world's.
+            std::vector<const map::MapPatch*>& worldPatches = out.entities.front().patches;
+            worldPatches.insert(worldPatches.begin(), ent.patches.begin(), ent.patches.end());
             continue;
         }
         out.entities.push_back(std::move(ent));
@@ -245,7 +273,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         if (b.detail) ++out.counts.detailBrushes;
         out.worldBounds.add(b.bounds);
     }
-    for (const BspEntity& e : out.entities) out.counts.patches += e.patchCount;
+    for (const BspEntity& e : out.entities) out.counts.patches += int(e.patches.size());
     return out;
 }
 

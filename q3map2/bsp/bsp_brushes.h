@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,8 +51,10 @@ struct BspEntity {
     std::string classname;
     // q3map2's order: opaque brushes first (latest first), then translucent ones in file order.
     std::vector<Brush> brushes;
-    int patchCount = 0;
+    // Patches (parsed, not yet tessellated), func_group ones moved here; none with -nocurves.
+    std::vector<const map::MapPatch*> patches;
     DVec3 origin;  // "origin" key (0 0 0 when absent), moved by an origin brush
+    bool hasOriginBrush = false;
 
     // Point entities start the flood that finds the map's inside.
     bool isPointEntity() const;
@@ -80,6 +83,12 @@ struct LoadedMap {
     std::vector<BspEntity> entities;  // worldspawn first; func_group and group_info removed
     MapLoadCounts counts;
     DBounds worldBounds;              // of the world brushes
+    // Shaders without a script are named as the map first spelled them (q3map2 keeps that
+    // spelling; the shader table keys them in lower case).
+    std::map<const ShaderInfo*, std::string> implicitShaderNames;
+
+    // The name a shader is written under.
+    const std::string& shaderName(const ShaderInfo& shader) const;
 };
 
 LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, const MapLoadOptions& options, Log& log);

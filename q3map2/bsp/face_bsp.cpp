@@ -155,7 +155,11 @@ int Tree::leafCount() const {
     return count;
 }
 
-std::vector<BspFace> makeStructuralFaceList(const std::vector<Brush>& brushes, bool deep) {
+std::vector<BspFace> makeStructuralFaceList(std::vector<Brush>& brushes, bool deep) {
+    for (Brush& b : brushes) {
+        const auto windings = std::count_if(b.sides.begin(), b.sides.end(), [](const BrushSide& s) { return !s.winding.empty(); });
+        if (windings < 4) b.detail = true;
+    }
     return makeFaceList(brushes, deep, [](const BrushSide& s) -> const Winding& { return s.winding; });
 }
 

@@ -33,7 +33,9 @@ inline constexpr BlockSize kDefaultBlockSize = {1024, 1024, 1024};
 
 // Faces from every side winding of the structural brushes (also detail ones with `deep`), skip
 // faces left out. In q3map2's list order (the reverse of brush and side order), which decides ties.
-std::vector<BspFace> makeStructuralFaceList(const std::vector<Brush>& brushes, bool deep);
+// A structural brush with fewer than four windings is malformed: it becomes detail here, as in
+// q3map2, and takes no part in the structure.
+std::vector<BspFace> makeStructuralFaceList(std::vector<Brush>& brushes, bool deep);
 // The same from the sides' visible hulls (after clipSidesIntoTree).
 std::vector<BspFace> makeVisibleFaceList(const std::vector<Brush>& brushes, bool deep);
 

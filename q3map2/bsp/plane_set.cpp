@@ -64,12 +64,18 @@ PlaneSet::PlaneSet(PlaneEpsilons epsilons) : epsilons_(epsilons) { hashHead_.fil
 int PlaneSet::hashOf(double dist) { return (kHashSize - 1) & int(std::fabs(dist)); }
 
 bool PlaneSet::matches(const MapPlane& candidate, const DPlane& plane, std::span<const DVec3> points) const {
-    auto close = [](double a, double b, double eps) { return a == b || std::fabs(a - b) < eps; };
+    // In 32-bit floats, as q3map2 stores and compares planes: a distance 0.005 away from a plane
+    // matches or not depending on float rounding, and with it which plane a side ends on.
+    auto close = [](double a, double b, double eps) {
+        const float fa = float(a), fb = float(b);
+        return fa == fb || std::fabs(fa - fb) < float(eps);
+    };
     if (!close(candidate.dist(), plane.dist, epsilons_.distance)) return false;
     for (int i = 0; i < 3; ++i)
         if (!close(candidate.normal()[i], plane.normal[i], epsilons_.normal)) return false;
     for (const DVec3& p : points) {
-        const double d = std::fabs(candidate.plane.distanceTo(p));
+        const Vec3 n = candidate.normal().toFloat();
+        const double d = std::fabs(double(dot(n, p.toFloat()) - float(candidate.dist())));
         if (d != 0.0 && d >= epsilons_.distance) return false;
     }
     return true;

@@ -13,12 +13,15 @@ constexpr double kTinyEdge = 0.2;
 constexpr double kWeldDistance = 0.1;
 constexpr double kWeldIntegerSnap = 0.01;
 
-int dominantAxis(const DVec3& n, double floor) {
+// Compared as 32-bit floats, as q3map2 does: for normals like (1 1 1)/sqrt(3) the first axis wins
+// whatever the last bits of the double components are, which fixes the winding's first point.
+int dominantAxis(const DVec3& n, float floor) {
     int axis = -1;
-    double best = floor;
+    float best = floor;
     for (int i = 0; i < 3; ++i) {
-        if (std::fabs(n[i]) > best) {
-            best = std::fabs(n[i]);
+        const float v = float(std::fabs(n[i]));
+        if (v > best) {
+            best = v;
             axis = i;
         }
     }
@@ -74,7 +77,7 @@ DVec3 edgeOutward(const DVec3& a, const DVec3& b, const DVec3& normal) { return 
 }  // namespace
 
 Winding baseWindingForPlane(const DPlane& plane) {
-    const int axis = dominantAxis(plane.normal, -1e30);
+    const int axis = dominantAxis(plane.normal, -1e30f);
     DVec3 up = axis == 2 ? DVec3{1, 0, 0} : DVec3{0, 0, 1};
     up = normalize(up - plane.normal * dot(up, plane.normal));
     const DVec3 org = plane.normal * plane.dist;
@@ -86,7 +89,7 @@ Winding baseWindingForPlane(const DPlane& plane) {
 
 Winding baseWindingForPlaneAccurate(const DPlane& plane) {
     // Some component of a unit normal exceeds 1/sqrt(3).
-    const int axis = dominantAxis(plane.normal, 0.56);
+    const int axis = dominantAxis(plane.normal, 0.56f);
     if (axis < 0) return {};
     DVec3 right = axis == 2 ? DVec3{0, -plane.normal.z, plane.normal.y} : DVec3{-plane.normal.y, plane.normal.x, 0};
     right *= kMaxWorldCoord * 4;

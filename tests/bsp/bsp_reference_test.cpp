@@ -1,9 +1,7 @@
 // Our world structure against q3map2 2.5.17n on the oacmp maps: clusters, portals and solid faces
 // from the reference's .prt, and the leaf count of its final face tree from its -v log.
 //
-// The reference compiles (-v -bsp -meta) are cached under <data cache>/bsp-prt/<key>/, the key
-// naming the map, the reference binary (size, mtime) and the .map's hash, so a rerun does not
-// compile again.
+// The reference compiles are cached (bsp_reference.h), so a rerun does not compile again.
 //
 // Tolerance: each count may differ by at most max(1, 0.2 %). q3map2 clips portals in 32-bit floats
 // and we clip in doubles, so a portal right at the "tiny" limit can survive on one side only; every
@@ -13,23 +11,20 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <random>
-#include <sstream>
-#include <unistd.h>
 
 #include "bsp_brushes.h"
-#include "conformance_pipeline.h"
-#include "file_io.h"
+#include "bsp_reference.h"
 #include "log.h"
 #include "map_file.h"
 #include "reference_fixture.h"
-#include "shader_loader.h"
 #include "test_data.h"
-#include "vfs.h"
 #include "world_structure.h"
 
 namespace q3::bspstage {
 namespace {
+
+using test::openArenaShaders;
+using test::referenceCompile;
 
 namespace fs = std::filesystem;
 
@@ -39,36 +34,6 @@ struct StructureCounts {
     int solidFaces = -1;
     int leafs = -1;
 };
-
-// The reference's compile of `mapSource`, cached; returns the folder holding NAME.prt and NAME.log.
-fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource) {
-    const std::string name = mapSource.stem().string();
-    const fs::path root = test::dataCache() / "bsp-prt";
-    const fs::path final = root / conformance::freshCacheKey(reference, mapSource);
-    if (fs::exists(final / (name + ".log"))) return final;
-    std::random_device entropy;
-    const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
-    fs::create_directories(work / "maps");
-    fs::copy_file(mapSource, work / "maps" / (name + ".map"));
-    const std::string command = "cd " + test::shellQuote(work) + " && " + test::shellQuote(reference) +
-                                " -v -threads 2 -game quake3 -fs_basepath " + test::shellQuote(test::openArenaBase()) +
-                                " -fs_basegame baseoa -bsp -meta " + test::shellQuote("maps/" + name + ".map");
-    std::string output;
-    const int status = test::runCommand(command, &output);
-    if (status != 0) {
-        fs::remove_all(work);
-        throw std::runtime_error("reference -bsp failed on " + mapSource.string() + ": " + output.substr(0, 400));
-    }
-    fs::create_directories(work / "keep");
-    for (const char* ext : {".prt", ".lin"})
-        if (fs::exists(work / "maps" / (name + ext))) fs::rename(work / "maps" / (name + ext), work / "keep" / (name + ext));
-    writeFileAtomic(work / "keep" / (name + ".log"), output);
-    fs::remove_all(work / "maps");
-    std::error_code ec;
-    fs::rename(work / "keep", final, ec);  // another process may have put its copy there first
-    fs::remove_all(work);
-    return final;
-}
 
 StructureCounts referenceCounts(const fs::path& folder, const std::string& name) {
     StructureCounts c;
@@ -88,18 +53,6 @@ StructureCounts referenceCounts(const fs::path& folder, const std::string& name)
         }
     }
     return c;
-}
-
-const ShaderTable& openArenaShaders() {
-    static Log log(false);
-    static const ShaderTable table = [] {
-        VfsOptions options;
-        options.basePaths.push_back(test::openArenaBase());
-        options.baseGame = "baseoa";
-        Vfs vfs(options, log);
-        return loadShaderTable(vfs, log);
-    }();
-    return table;
 }
 
 StructureCounts ourCounts(const fs::path& mapSource) {
@@ -136,9 +89,9 @@ TEST_P(BspReferenceCounts, PortalFileAndLeafCountsMatchQ3map2) {
 
 std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
 
-INSTANTIATE_TEST_SUITE_P(Oacmp, BspReferenceCounts, ::testing::ValuesIn(test::oacmpMapSourcesForRegistration()), mapName);
+INSTANTIATE_TEST_SUITE_P(Oacmp, BspReferenceCounts, ::testing::ValuesIn(q3::test::oacmpMapSourcesForRegistration()), mapName);
 
-TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(test::oacmpMapSources().size(), 13u); }
+TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(q3::test::oacmpMapSources().size(), 13u); }
 
 }  // namespace
 }  // namespace q3::bspstage
