@@ -131,7 +131,7 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
         for (size_t j = 0; j < brush.sides.size() && !w.empty(); ++j) {
             const BrushSide& clipper = brush.sides[j];
             if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
-            chopWindingInPlace(w, planeOf(clipper).flipped(), 0);
+            chopWindingInPlaceAccurate(w, planeOf(clipper).flipped(), 0);
         }
         weldShortEdges(w);
         side.winding.clear();

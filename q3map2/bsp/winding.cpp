@@ -28,15 +28,29 @@ int dominantAxis(const DVec3& n, float floor) {
     return axis;
 }
 
+// Two arithmetics, as in q3map2: brush windings are built in double precision (the "accu"
+// functions); every other winding is a 32-bit float polygon, with distances computed in floats
+// and split points rounded to floats. Reproducing the float rounding keeps portal coordinates
+// and near-epsilon decisions identical to q3map2's.
+enum class Precision { Double, Float };
+
+double distanceTo(const DPlane& plane, const DVec3& p, Precision precision) {
+    if (precision == Precision::Double) return plane.distanceTo(p);
+    return double(dot(plane.normal.toFloat(), p.toFloat()) - float(plane.dist));
+}
+
 // The intersection of the segment p1-p2 with the plane; exact on axial components.
-DVec3 splitPoint(const DVec3& p1, const DVec3& p2, double d1, double d2, const DPlane& plane) {
-    const double t = d1 / (d1 - d2);
+DVec3 splitPoint(const DVec3& p1, const DVec3& p2, double d1, double d2, const DPlane& plane, Precision precision) {
+    const bool inFloat = precision == Precision::Float;
+    const double t = inFloat ? double(float(d1) / (float(d1) - float(d2))) : d1 / (d1 - d2);
     DVec3 mid;
     for (int j = 0; j < 3; ++j) {
         if (plane.normal[j] == 1)
             mid[j] = plane.dist;
         else if (plane.normal[j] == -1)
             mid[j] = -plane.dist;
+        else if (inFloat)
+            mid[j] = double(float(p1[j] + t * double(float(p2[j]) - float(p1[j]))));
         else
             mid[j] = p1[j] + t * (p2[j] - p1[j]);
     }
@@ -49,12 +63,12 @@ struct Classified {
     int counts[3] = {0, 0, 0};
 };
 
-Classified classify(const Winding& w, const DPlane& plane, double epsilon) {
+Classified classify(const Winding& w, const DPlane& plane, double epsilon, Precision precision) {
     Classified c;
     c.dists.resize(w.size() + 1);
     c.sides.resize(w.size() + 1);
     for (size_t i = 0; i < w.size(); ++i) {
-        const double d = plane.distanceTo(w[i]);
+        const double d = distanceTo(plane, w[i], precision);
         c.dists[i] = d;
         c.sides[i] = d > epsilon ? PlaneSide::Front : (d < -epsilon ? PlaneSide::Back : PlaneSide::On);
         ++c.counts[int(c.sides[i])];
@@ -62,6 +76,27 @@ Classified classify(const Winding& w, const DPlane& plane, double epsilon) {
     c.dists[w.size()] = c.dists[0];
     c.sides[w.size()] = c.sides[0];
     return c;
+}
+
+void chop(Winding& w, const DPlane& plane, double epsilon, Precision precision) {
+    const Classified c = classify(w, plane, epsilon, precision);
+    if (!c.counts[int(PlaneSide::Front)]) {
+        w.clear();
+        return;
+    }
+    if (!c.counts[int(PlaneSide::Back)]) return;
+    Winding front;
+    front.reserve(w.size() + 4);
+    for (size_t i = 0; i < w.size(); ++i) {
+        if (c.sides[i] == PlaneSide::On) {
+            front.push_back(w[i]);
+            continue;
+        }
+        if (c.sides[i] == PlaneSide::Front) front.push_back(w[i]);
+        if (c.sides[i + 1] == PlaneSide::On || c.sides[i + 1] == c.sides[i]) continue;
+        front.push_back(splitPoint(w[i], w[(i + 1) % w.size()], c.dists[i], c.dists[i + 1], plane, precision));
+    }
+    w.swap(front);
 }
 
 double weldComponent(double a, double b) {
@@ -78,13 +113,15 @@ DVec3 edgeOutward(const DVec3& a, const DVec3& b, const DVec3& normal) { return 
 
 Winding baseWindingForPlane(const DPlane& plane) {
     const int axis = dominantAxis(plane.normal, -1e30f);
-    DVec3 up = axis == 2 ? DVec3{1, 0, 0} : DVec3{0, 0, 1};
-    up = normalize(up - plane.normal * dot(up, plane.normal));
-    const DVec3 org = plane.normal * plane.dist;
-    DVec3 right = cross(up, plane.normal);
-    up *= kMaxWorldCoord * 2;
-    right *= kMaxWorldCoord * 2;
-    return {org - right + up, org + right + up, org + right - up, org - right - up};
+    const Vec3 normal = plane.normal.toFloat();
+    Vec3 up = axis == 2 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    up -= normal * dot(up, normal);
+    up = (DVec3(up) / length(DVec3(up))).toFloat();  // q3map2 normalises through doubles
+    const Vec3 org = normal * float(plane.dist);
+    Vec3 right = cross(up, normal);
+    up *= float(kMaxWorldCoord * 2);
+    right *= float(kMaxWorldCoord * 2);
+    return {DVec3(org - right + up), DVec3(org + right + up), DVec3(org + right - up), DVec3(org - right - up)};
 }
 
 Winding baseWindingForPlaneAccurate(const DPlane& plane) {
@@ -98,29 +135,14 @@ Winding baseWindingForPlaneAccurate(const DPlane& plane) {
     return {org - right + up, org + right + up, org + right - up, org - right - up};
 }
 
-void chopWindingInPlace(Winding& w, const DPlane& plane, double epsilon) {
-    const Classified c = classify(w, plane, std::max(epsilon, kMinimumEpsilon));
-    if (!c.counts[int(PlaneSide::Front)]) {
-        w.clear();
-        return;
-    }
-    if (!c.counts[int(PlaneSide::Back)]) return;
-    Winding front;
-    front.reserve(w.size() + 4);
-    for (size_t i = 0; i < w.size(); ++i) {
-        if (c.sides[i] == PlaneSide::On) {
-            front.push_back(w[i]);
-            continue;
-        }
-        if (c.sides[i] == PlaneSide::Front) front.push_back(w[i]);
-        if (c.sides[i + 1] == PlaneSide::On || c.sides[i + 1] == c.sides[i]) continue;
-        front.push_back(splitPoint(w[i], w[(i + 1) % w.size()], c.dists[i], c.dists[i + 1], plane));
-    }
-    w.swap(front);
+void chopWindingInPlace(Winding& w, const DPlane& plane, double epsilon) { chop(w, plane, epsilon, Precision::Float); }
+
+void chopWindingInPlaceAccurate(Winding& w, const DPlane& plane, double epsilon) {
+    chop(w, plane, std::max(epsilon, kMinimumEpsilon), Precision::Double);
 }
 
 std::pair<Winding, Winding> clipWindingStrict(const Winding& w, const DPlane& plane, double epsilon) {
-    const Classified c = classify(w, plane, epsilon);
+    const Classified c = classify(w, plane, epsilon, Precision::Float);
     if (!c.counts[int(PlaneSide::Front)] && !c.counts[int(PlaneSide::Back)]) return {};
     if (!c.counts[int(PlaneSide::Front)]) return {Winding{}, w};
     if (!c.counts[int(PlaneSide::Back)]) return {w, Winding{}};
@@ -135,7 +157,7 @@ std::pair<Winding, Winding> clipWindingStrict(const Winding& w, const DPlane& pl
         }
         (c.sides[i] == PlaneSide::Front ? front : back).push_back(w[i]);
         if (c.sides[i + 1] == PlaneSide::On || c.sides[i + 1] == c.sides[i]) continue;
-        const DVec3 mid = splitPoint(w[i], w[(i + 1) % w.size()], c.dists[i], c.dists[i + 1], plane);
+        const DVec3 mid = splitPoint(w[i], w[(i + 1) % w.size()], c.dists[i], c.dists[i + 1], plane, Precision::Float);
         front.push_back(mid);
         back.push_back(mid);
     }
@@ -151,7 +173,7 @@ std::pair<Winding, Winding> clipWinding(const Winding& w, const DPlane& plane, d
 PlaneSide windingOnPlaneSide(const Winding& w, const DPlane& plane) {
     bool front = false, back = false;
     for (const DVec3& p : w) {
-        const double d = plane.distanceTo(p);
+        const double d = distanceTo(plane, p, Precision::Float);
         if (d < -kOnEpsilon) {
             if (front) return PlaneSide::Cross;
             back = true;
@@ -239,12 +261,12 @@ void addWindingToConvexHull(const Winding& w, Winding& hull, const DVec3& normal
         if (start == n) continue;  // sees every edge: degenerate hull, keep it
         size_t end = start;
         while (facesPoint[end]) end = (end + 1) % n;
-        Winding grown;
+        // The new point first, then the kept vertices in order (q3map2's order).
+        Winding grown{p};
         for (size_t k = end;; k = (k + 1) % n) {
             grown.push_back(hull[k]);
             if (k == start) break;
         }
-        grown.push_back(p);
         hull.swap(grown);
     }
 }

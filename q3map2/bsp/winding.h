@@ -28,8 +28,11 @@ Winding baseWindingForPlane(const DPlane& plane);
 Winding baseWindingForPlaneAccurate(const DPlane& plane);
 
 // Keeps the part in front of the plane. Points within `epsilon` count as on it; the winding
-// empties when nothing is in front.
+// empties when nothing is in front. Like every operation here except the "Accurate" ones, it
+// works as q3map2's float windings do (distances in 32-bit floats, new points rounded to floats).
 void chopWindingInPlace(Winding& w, const DPlane& plane, double epsilon);
+// The same in double precision, never closer than half a float epsilon: for brush windings.
+void chopWindingInPlaceAccurate(Winding& w, const DPlane& plane, double epsilon);
 // Splits into (front, back). Strict: a winding lying on the plane gives two empty windings.
 std::pair<Winding, Winding> clipWindingStrict(const Winding& w, const DPlane& plane, double epsilon);
 // As above, but a winding on the plane comes back whole on the back side.
