@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <unordered_map>
 
 #include "shader_info.h"
 
@@ -46,7 +48,14 @@ struct Split {
     uint32_t compileFlags = 0;
 };
 
-Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, PlaneSet& planes, const BlockSize& block) {
+// How q3map2 weighs a candidate split plane (facebsp.cpp SelectSplitPlaneNum).
+struct SplitScoring {
+    bool alternate = false;                   // -altsplit
+    std::unordered_map<int, int> timesUsed;  // per plane, for -altsplit
+};
+
+Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, PlaneSet& planes, const BlockSize& block,
+                  SplitScoring& scoring) {
     for (int i = 0; i < 3; ++i) {
         if (block[i] <= 0) continue;
         const double dist = double(float(block[i] * (std::floor(node.bounds.mins[i] / block[i]) + 1)));
@@ -56,16 +65,30 @@ Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, Plane
     const BspFace* best = nullptr;
     for (const BspFace& split : faces) {
         const MapPlane& plane = planes[split.planeNum];
-        int facing = 0, splits = 0;
+        int facing = 0, splits = 0, front = 0, back = 0;
         for (const BspFace& check : faces) {
             if (check.planeNum == split.planeNum) {
                 ++facing;
                 continue;
             }
-            if (windingOnPlaneSide(check.winding, plane.plane) == PlaneSide::Cross) ++splits;
+            switch (windingOnPlaneSide(check.winding, plane.plane)) {
+            case PlaneSide::Cross: ++splits; break;
+            case PlaneSide::Front: ++front; break;
+            case PlaneSide::Back: ++back; break;
+            case PlaneSide::On: break;
+            }
         }
-        int value = 5 * facing - 5 * splits;
-        if (plane.type < PlaneNonAxial) value += 5;
+        int value;
+        if (scoring.alternate) {
+            // Balanced, large, rarely used planes first.
+            auto used = scoring.timesUsed.find(split.planeNum);
+            value = 20000 - std::abs(front - back) - (used == scoring.timesUsed.end() ? 0 : used->second) - facing -
+                    5 * splits;
+            value = int(float(value) + float(windingArea(split.winding)) * 10);
+        } else {
+            value = 5 * facing - 5 * splits;
+            if (plane.type < PlaneNonAxial) value += 5;
+        }
         value += split.priority;
         if (value > bestValue) {
             bestValue = value;
@@ -73,6 +96,7 @@ Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, Plane
         }
     }
     if (!best) return {};
+    ++scoring.timesUsed[best->planeNum];
     return {best->planeNum, best->compileFlags};
 }
 
@@ -80,6 +104,7 @@ struct Builder {
     Tree& tree;
     PlaneSet& planes;
     const BlockSize& block;
+    SplitScoring scoring;
     int leafs = 0;
 
     int newNode(int parent, const DBounds& bounds) {
@@ -91,7 +116,7 @@ struct Builder {
     }
 
     void build(int nodeIndex, std::vector<BspFace> faces) {
-        const Split split = selectSplit(tree.node(nodeIndex), faces, planes, block);
+        const Split split = selectSplit(tree.node(nodeIndex), faces, planes, block, scoring);
         if (split.planeNum < 0) {
             tree.node(nodeIndex).planeNum = kLeafPlane;
             tree.node(nodeIndex).hasStructuralChildren = false;
@@ -167,11 +192,12 @@ std::vector<BspFace> makeVisibleFaceList(const std::vector<Brush>& brushes, bool
     return makeFaceList(brushes, deep, [](const BrushSide& s) -> const Winding& { return s.visibleHull; });
 }
 
-Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize& blockSize, FaceBspCounts* counts) {
+Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize& blockSize, bool alternateSplit,
+                   FaceBspCounts* counts) {
     Tree tree;
     for (const BspFace& f : faces) tree.bounds.add(windingBounds(f.winding));
     const int faceCount = int(faces.size());
-    Builder builder{tree, planes, blockSize};
+    Builder builder{tree, planes, blockSize, SplitScoring{alternateSplit, {}}};
     tree.head = builder.newNode(-1, tree.bounds);
     builder.build(tree.head, std::move(faces));
     if (counts) *counts = {faceCount, builder.leafs};

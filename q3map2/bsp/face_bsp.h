@@ -44,8 +44,10 @@ struct FaceBspCounts {
     int leafs = 0;
 };
 
-// The tree from the faces. Block splits may add planes to `planes`.
-Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize& blockSize,
+// The tree from the faces. Block splits may add planes to `planes`. `alternateSplit` (-altsplit)
+// scores instead 20000 - |front - back| - times the plane was used - coplanar faces - 5 per face
+// cut + 10 x the face's area, plus the priority.
+Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize& blockSize, bool alternateSplit = false,
                    FaceBspCounts* counts = nullptr);
 
 }  // namespace q3::bspstage

@@ -24,10 +24,10 @@ bool keyIsTrue(const map::MapEntity& e, std::string_view a, std::string_view b) 
 }
 
 // FaceBSP, MakeTreePortals and FilterStructuralBrushesIntoTree on one face list.
-Tree buildTreePass(std::vector<BspFace> faces, LoadedMap& map, const BlockSize& blockSize, TreePassCounts& counts,
-                   Log& log) {
+Tree buildTreePass(std::vector<BspFace> faces, LoadedMap& map, const BlockSize& blockSize, bool alternateSplit,
+                   TreePassCounts& counts, Log& log) {
     log.debug("--- FaceBSP ---");
-    Tree tree = buildFaceTree(std::move(faces), map.planes, blockSize, &counts.faceBsp);
+    Tree tree = buildFaceTree(std::move(faces), map.planes, blockSize, alternateSplit, &counts.faceBsp);
     log.debug(counted(counts.faceBsp.faces, "faces"));
     log.debug(counted(counts.faceBsp.leafs, "leafs"));
     log.debug("--- MakeTreePortals ---");
@@ -81,7 +81,8 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
     std::snprintf(line, sizeof line, "block size = { %g %g %g }", out.blockSize[0], out.blockSize[1], out.blockSize[2]);
     log.info(line);
 
-    Tree tree = buildTreePass(makeStructuralFaceList(world.brushes, options.deep), map, out.blockSize, out.first, log);
+    Tree tree = buildTreePass(makeStructuralFaceList(world.brushes, options.deep), map, out.blockSize,
+                              options.alternateSplit, out.first, log);
     out.flood = floodPass(tree, map, out.first, log);
     if (ignoreLeaks && out.flood == FloodResult::Leaked) out.flood = FloodResult::Good;
     out.leaked = out.flood != FloodResult::Good;
@@ -105,7 +106,8 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
         // Without an entity in open space every leaf would be filled: keep the first tree then.
         fillPass(tree, out.first, log);
         clipSidesIntoTree(world.brushes, tree, map.planes);
-        tree = buildTreePass(makeVisibleFaceList(world.brushes, options.deep), map, out.blockSize, out.second, log);
+        tree = buildTreePass(makeVisibleFaceList(world.brushes, options.deep), map, out.blockSize, options.alternateSplit,
+                             out.second, log);
         // Flooding again drops the portals in the void.
         floodPass(tree, map, out.second, log);
         fillPass(tree, out.second, log);

@@ -24,6 +24,7 @@ namespace q3::bspstage {
 struct WorldStructureOptions {
     bool deep = false;      // -deep: detail faces split the tree too (at low priority)
     bool leakTest = false;  // -leaktest: stop right after a leak is found
+    bool alternateSplit = false;  // -altsplit: q3map2's alternative split plane score
 };
 
 struct TreePassCounts {

@@ -18,10 +18,12 @@ namespace q3::bspstage::test {
 namespace fs = std::filesystem;
 using namespace q3::test;
 
-fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource) {
+fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions) {
     const std::string name = mapSource.stem().string();
     const fs::path root = dataCache() / "bsp-prt";
-    const fs::path final = root / conformance::freshCacheKey(reference, mapSource);
+    std::string key = conformance::freshCacheKey(reference, mapSource);
+    for (char c : extraOptions) key += c == ' ' ? '_' : c;
+    const fs::path final = root / key;
     if (fs::exists(final / (name + ".log")) && fs::exists(final / (name + ".bsp"))) return final;
     fs::remove_all(final);  // an older, incomplete entry
     std::random_device entropy;
@@ -30,7 +32,7 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource) 
     fs::copy_file(mapSource, work / "maps" / (name + ".map"));
     const std::string command = "cd " + shellQuote(work) + " && " + shellQuote(reference) +
                                 " -v -threads 2 -game quake3 -fs_basepath " + shellQuote(openArenaBase()) +
-                                " -fs_basegame baseoa -bsp -meta " + shellQuote("maps/" + name + ".map");
+                                " -fs_basegame baseoa -bsp -meta " + extraOptions + " " + shellQuote("maps/" + name + ".map");
     std::string output;
     const int status = runCommand(command, &output);
     if (status != 0) {

@@ -7,10 +7,12 @@
 
 namespace q3::bspstage::test {
 
-// The reference's compile (-v -bsp -meta) of `mapSource`, cached under <data cache>/bsp-prt/<key>/
-// (the key names the map, the reference binary's size and mtime and the .map's hash): the folder
-// holding NAME.prt (or NAME.lin), NAME.bsp and NAME.log (the -v output). Throws when it fails.
-std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource);
+// The reference's compile (-v -bsp -meta and `extraOptions`) of `mapSource`, cached under
+// <data cache>/bsp-prt/<key>/ (the key names the map, the reference binary's size and mtime, the
+// .map's hash and the extra options): the folder holding NAME.prt (or NAME.lin), NAME.bsp and
+// NAME.log (the -v output). Throws when it fails.
+std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
+                                       const std::string& extraOptions = {});
 
 // Every shader of the OpenArena data (loaded once).
 const ShaderTable& openArenaShaders();

@@ -61,11 +61,11 @@ StructureCounts referenceCounts(const fs::path& folder, const std::string& name)
     return c;
 }
 
-StructureCounts ourCounts(const fs::path& mapSource) {
+StructureCounts ourCounts(const fs::path& mapSource, const WorldStructureOptions& options = {}) {
     Log log(false);
     const map::MapFile file = map::loadMap(mapSource);
     LoadedMap map = loadMapForBsp(file, openArenaShaders(), {}, log);
-    const WorldStructure world = buildWorldStructure(map, {}, log);
+    const WorldStructure world = buildWorldStructure(map, options, log);
     EXPECT_FALSE(world.leaked) << mapSource;
     return {world.clusters.clusters, world.clusters.portals, world.clusters.solidFaces, world.second.faceBsp.leafs,
             world.portalFile};
@@ -107,6 +107,27 @@ TEST_P(BspReferenceCounts, PortalFileAndLeafCountsMatchQ3map2) {
 std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
 
 INSTANTIATE_TEST_SUITE_P(Oacmp, BspReferenceCounts, ::testing::ValuesIn(q3::test::oacmpMapSourcesForRegistration()), mapName);
+
+// -altsplit on two maps: the .prt must be byte-identical.
+class AlternateSplit : public conformance::ReferenceTest<std::string> {};
+
+TEST_P(AlternateSplit, PortalFileMatchesQ3map2) {
+    fs::path mapSource;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == GetParam()) mapSource = p;
+    ASSERT_FALSE(mapSource.empty()) << GetParam();
+    const StructureCounts ref = referenceCounts(referenceCompile(reference(), mapSource, "-altsplit"), GetParam());
+    WorldStructureOptions options;
+    options.alternateSplit = true;
+    const StructureCounts ours = ourCounts(mapSource, options);
+    std::printf("%-10s -altsplit clusters %5d / %5d  portals %5d / %5d  (ours / q3map2)\n", GetParam().c_str(),
+                ours.clusters, ref.clusters, ours.portals, ref.portals);
+    EXPECT_EQ(ours.portalFile, ref.portalFile);
+    // The alternative score builds another tree than the default one.
+    EXPECT_NE(ours.portalFile, ourCounts(mapSource).portalFile);
+}
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, AlternateSplit, ::testing::Values("oacmpdm1", "oacmpdm7"));
 
 TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(q3::test::oacmpMapSources().size(), 13u); }
 

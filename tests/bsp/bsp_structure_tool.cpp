@@ -1,7 +1,7 @@
 // Developer tool: runs the -bsp world structure steps on a .map and writes <map>.prt (or <map>.lin
 // on a leak) beside it, printing q3map2's counters. Not the -bsp stage: with -emit it writes the
 // structure lumps to FILE for inspection, a BSP without draw surfaces that no engine loads.
-//   bspstructure [-v] [-leaktest] [-deep] [-emit FILE] [-fs_basepath DIR]... [-fs_game NAME] MAP
+//   bspstructure [-v] [-leaktest] [-deep] [-altsplit] [-emit FILE] [-fs_basepath DIR]... [-fs_game NAME] MAP
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
         if (arg == "-v") log.setVerbose(true);
         else if (arg == "-leaktest") options.leakTest = true;
         else if (arg == "-deep") options.deep = true;
+        else if (arg == "-altsplit") options.alternateSplit = true;
         else if (arg == "-emit" && i + 1 < argc) emitPath = argv[++i];
         else if (arg == "-fs_basepath" && i + 1 < argc) vfsOptions.basePaths.emplace_back(argv[++i]);
         else if (arg == "-fs_game" && i + 1 < argc) vfsOptions.gameDirs.emplace_back(argv[++i]);
