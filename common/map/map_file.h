@@ -60,6 +60,7 @@ struct TexBrushPrimitive {
 
 struct BrushFace {
     Vec3 points[3];       // as written
+    double exactPoints[3][3] = {};  // the same in double precision, as q3map2 reads them for -bsp
     MapPlane plane;       // from the points; valid only when planeValid
     bool planeValid = false;
     std::string texture;  // as written, without the "textures/" prefix the compiler adds

@@ -43,11 +43,13 @@ static double readNumberToken(Script& s, std::string_view what, bool sameLine) {
     return value;
 }
 
-float readFloat(Script& s, std::string_view what, bool sameLine) {
+double readDouble(Script& s, std::string_view what, bool sameLine) {
     double value = readNumberToken(s, what, sameLine);
     if (std::fabs(value) > FLT_MAX) s.fail("number out of range for " + std::string(what) + ": '" + shown(s.token()) + "'");
-    return static_cast<float>(value);
+    return value;
 }
+
+float readFloat(Script& s, std::string_view what, bool sameLine) { return static_cast<float>(readDouble(s, what, sameLine)); }
 
 int readInt(Script& s, std::string_view what, bool sameLine) {
     double value = readNumberToken(s, what, sameLine);
@@ -55,16 +57,6 @@ int readInt(Script& s, std::string_view what, bool sameLine) {
         s.fail("expected an integer for " + std::string(what) + ", found '" + shown(s.token()) + "'");
     if (value > 2147483647.0) return static_cast<int>(static_cast<uint32_t>(value));
     return static_cast<int>(value);
-}
-
-Vec3 readPoint(Script& s, std::string_view what) {
-    require(s, "(", "to open " + std::string(what));
-    Vec3 p;
-    p.x = readFloat(s, std::string(what) + " x");
-    p.y = readFloat(s, std::string(what) + " y");
-    p.z = readFloat(s, std::string(what) + " z");
-    require(s, ")", "to close " + std::string(what));
-    return p;
 }
 
 std::string readTextureName(Script& s, std::string_view where) {

@@ -15,14 +15,13 @@ void readPlanePoints(Script& s, BrushFace& face, const std::string& where, bool 
     face.line = s.line();
     for (int i = 0; i < 3; ++i) {
         const std::string what = "plane point " + std::to_string(i + 1) + " " + where;
-        if (i == 0 && firstOpenRead) {
-            face.points[0].x = readFloat(s, what + " x");
-            face.points[0].y = readFloat(s, what + " y");
-            face.points[0].z = readFloat(s, what + " z");
-            require(s, ")", "to close " + what);
-        } else {
-            face.points[i] = readPoint(s, what);
+        if (i > 0 || !firstOpenRead) require(s, "(", "to open " + what);
+        static const char* const axes[3] = {" x", " y", " z"};
+        for (int k = 0; k < 3; ++k) {
+            face.exactPoints[i][k] = readDouble(s, what + axes[k]);
+            face.points[i][k] = static_cast<float>(face.exactPoints[i][k]);
         }
+        require(s, ")", "to close " + what);
     }
     face.planeValid = planeFromPoints(face.points[0], face.points[1], face.points[2], face.plane);
 }

@@ -23,11 +23,11 @@ std::string shown(std::string_view text);
 void require(Script& s, std::string_view text, std::string_view where);
 // Next token as a finite number that fits a float.
 float readFloat(Script& s, std::string_view what, bool sameLine = false);
+// The same number kept in double precision.
+double readDouble(Script& s, std::string_view what, bool sameLine = false);
 // Next token as an integer (what editors write for flags and sizes); values up to 2^32-1 wrap to
 // int32 the way q3map2's atoi-and-store does for unsigned flag words.
 int readInt(Script& s, std::string_view what, bool sameLine = false);
-// "( x y z )"
-Vec3 readPoint(Script& s, std::string_view what);
 // A texture/material name: any token except an unquoted brace or parenthesis.
 std::string readTextureName(Script& s, std::string_view where);
 

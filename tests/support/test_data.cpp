@@ -72,6 +72,12 @@ std::vector<fs::path> allRealBsps() { return findFiles(dataCache() / "loose", ".
 
 std::vector<fs::path> oacmpMapSources() { return findFiles(dataCache() / "loose", ".map", "maps"); }
 
+std::vector<fs::path> oacmpMapSourcesForRegistration() {
+    const fs::path root = cacheRoot();
+    if (!fs::exists(root / ".complete-v2")) return {};
+    return findFiles(root / "loose", ".map", "maps");
+}
+
 fs::path realBsp(const std::string& mapName) {
     for (const fs::path& p : allRealBsps())
         if (p.stem() == mapName) return p;

@@ -23,6 +23,9 @@ bool realBspsAreSampled();
 std::vector<std::filesystem::path> realBspsForRegistration();
 // The 13 .map sources of openarena-oacmp1, sorted.
 std::vector<std::filesystem::path> oacmpMapSources();
+// The same for test registration: empty, without failing, when the cache is missing (pair it with a
+// test that asserts the count through oacmpMapSources()).
+std::vector<std::filesystem::path> oacmpMapSourcesForRegistration();
 // The shipped BSP of one map by name ("oacmpdm1"); fails the test when absent.
 std::filesystem::path realBsp(const std::string& mapName);
 // Every unpacked scripts/*.shader file, sorted.

@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include "bsp_test_maps.h"
+
+namespace q3::bspstage {
+namespace {
+
+using test::boxBrush;
+using test::worldspawn;
+
+LoadedMap load(const std::string& text, map::MapFile& file, MapLoadOptions options = {}) {
+    static Log log(false);
+    static const ShaderTable shaders = test::commonShaders(log);
+    file = map::parseMap(text, "test.map");
+    return loadMapForBsp(file, shaders, options, log);
+}
+
+TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
+    map::MapFile file;
+    LoadedMap m = load(worldspawn(boxBrush({0, 0, 0}, {64, 32, 16})), file);
+    ASSERT_EQ(m.entities.size(), 1u);
+    ASSERT_EQ(m.entities[0].brushes.size(), 1u);
+    const Brush& b = m.entities[0].brushes[0];
+    ASSERT_EQ(b.sides.size(), 6u);
+    const DVec3 expected[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(m.planes[b.sides[size_t(i)].planeNum].normal(), expected[i]) << i;
+        EXPECT_EQ(b.sides[size_t(i)].winding.size(), 4u);
+        EXPECT_FALSE(b.sides[size_t(i)].bevel);
+    }
+    EXPECT_EQ(b.bounds.mins, (DVec3{0, 0, 0}));
+    EXPECT_EQ(b.bounds.maxs, (DVec3{64, 32, 16}));
+    EXPECT_TRUE(b.opaque);
+    EXPECT_FALSE(b.detail);
+    EXPECT_EQ(b.contentFlags, contents::Solid);
+    EXPECT_EQ(m.counts.boxBevels, 0);
+}
+
+TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
+    // A wedge: floor, back wall, two sides and a slope from (0,0,64) down to (64,0,0).
+    const std::string wedge = R"({
+( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 64 0 ) ( 1 64 0 ) ( 0 64 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 64 ) ( 0 64 64 ) ( 64 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
+}
+)";
+    map::MapFile file;
+    LoadedMap m = load(worldspawn(wedge), file);
+    const Brush& b = m.entities[0].brushes.at(0);
+    ASSERT_GE(b.sides.size(), 7u);
+    const DVec3 expected[6] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(m.planes[b.sides[size_t(i)].planeNum].normal(), expected[i]) << i;
+    // +X and +Z are missing on a wedge: bevels at the bounds, without windings.
+    EXPECT_TRUE(b.sides[1].bevel);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[1].planeNum].dist(), 64);
+    EXPECT_TRUE(b.sides[5].bevel);
+    EXPECT_TRUE(b.sides[5].winding.empty());
+    EXPECT_EQ(m.counts.boxBevels, 2);
+    // The slope is the only non-axial side; its edges along Y are axial, the others lie on the
+    // existing sides, so no edge bevel is needed.
+    EXPECT_EQ(b.sides.size(), 7u);
+    EXPECT_EQ(m.counts.edgeBevels, 0);
+}
+
+TEST(BspBrushes, ContentsFromShaders) {
+    map::MapFile file;
+    const std::string text = worldspawn(boxBrush({0, 0, 0}, {64, 64, 64}, "liquids/water") +
+                                        boxBrush({100, 0, 0}, {164, 64, 64}, "common/hint") +
+                                        boxBrush({200, 0, 0}, {264, 64, 64}, "base/detailwall") +
+                                        boxBrush({300, 0, 0}, {364, 64, 64}, "common/caulk"));
+    LoadedMap m = load(text, file);
+    const auto& brushes = m.entities[0].brushes;
+    ASSERT_EQ(brushes.size(), 4u);
+    // Opaque brushes first, latest first; then translucent ones in file order.
+    EXPECT_EQ(brushes[0].brushNum, 3);  // caulk
+    EXPECT_EQ(brushes[1].brushNum, 2);  // detail wall
+    EXPECT_EQ(brushes[2].brushNum, 0);  // water
+    EXPECT_EQ(brushes[3].brushNum, 1);  // hint
+    EXPECT_TRUE(brushes[0].opaque && !brushes[0].detail);
+    EXPECT_TRUE(brushes[1].opaque && brushes[1].detail);
+    EXPECT_TRUE(!brushes[2].opaque && brushes[2].detail);  // translucent, not structural: detail
+    EXPECT_EQ(brushes[2].contentFlags, contents::Water | contents::Translucent);
+    EXPECT_TRUE(!brushes[3].opaque && !brushes[3].detail);  // hint is structural
+    EXPECT_TRUE(brushes[3].compileFlags & compileflags::Hint);
+    EXPECT_EQ(m.counts.detailBrushes, 2);
+
+    map::MapFile file2;
+    MapLoadOptions noWater;
+    noWater.noWater = true;
+    noWater.noHint = true;
+    EXPECT_EQ(load(text, file2, noWater).entities[0].brushes.size(), 2u);
+}
+
+TEST(BspBrushes, FuncGroupJoinsTheWorldAndBrushEntitiesStaySeparate) {
+    const std::string text = worldspawn(boxBrush({0, 0, 0}, {64, 64, 64})) +
+                             "{\n\"classname\" \"func_group\"\n" + boxBrush({100, 0, 0}, {164, 64, 64}) + "}\n" +
+                             "{\n\"classname\" \"func_door\"\n" + boxBrush({200, 0, 0}, {264, 64, 64}) +
+                             boxBrush({216, 16, 16}, {232, 32, 32}, "common/origin") + "}\n" +
+                             test::pointEntity("info_player_deathmatch", {32, 32, 100});
+    map::MapFile file;
+    LoadedMap m = load(text, file);
+    ASSERT_EQ(m.entities.size(), 3u);
+    EXPECT_EQ(m.entities[0].brushes.size(), 2u);
+    EXPECT_EQ(m.entities[0].brushes[0].bounds.mins.x, 100);  // merged opaque brush goes first
+    EXPECT_EQ(m.entities[1].classname, "func_door");
+    ASSERT_EQ(m.entities[1].brushes.size(), 1u);
+    EXPECT_FALSE(m.entities[1].isPointEntity());
+    // The origin brush is gone: the door is now relative to its centre (224 24 24).
+    EXPECT_EQ(m.entities[1].origin, (DVec3{224, 24, 24}));
+    EXPECT_EQ(m.entities[1].brushes[0].bounds.mins, (DVec3{-24, -24, -24}));
+    EXPECT_TRUE(m.entities[2].isPointEntity());
+    EXPECT_EQ(m.entities[2].origin, (DVec3{32, 32, 100}));
+}
+
+TEST(BspBrushes, DegenerateAndMirroredBrushesAreDropped) {
+    const std::string mirrored = R"({
+( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 0 ) ( 0 0 1 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
+( 0 0 64 ) ( 0 1 64 ) ( 1 0 64 ) base/wall 0 0 0 0.5 0.5 0 0 0
+}
+)";
+    map::MapFile file;
+    LoadedMap m = load(worldspawn(mirrored + boxBrush({0, 0, 0}, {8, 8, 8})), file);
+    EXPECT_EQ(m.entities[0].brushes.size(), 1u);
+}
+
+}  // namespace
+}  // namespace q3::bspstage

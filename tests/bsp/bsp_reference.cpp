@@ -1,0 +1,65 @@
+#include "bsp_reference.h"
+
+#include <unistd.h>
+
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "conformance_pipeline.h"
+#include "file_io.h"
+#include "log.h"
+#include "shader_loader.h"
+#include "test_data.h"
+#include "vfs.h"
+
+namespace q3::bspstage::test {
+
+namespace fs = std::filesystem;
+using namespace q3::test;
+
+fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions) {
+    const std::string name = mapSource.stem().string();
+    const fs::path root = dataCache() / "bsp-prt";
+    std::string key = conformance::freshCacheKey(reference, mapSource);
+    for (char c : extraOptions) key += c == ' ' ? '_' : c;
+    const fs::path final = root / key;
+    if (fs::exists(final / (name + ".log")) && fs::exists(final / (name + ".bsp"))) return final;
+    fs::remove_all(final);  // an older, incomplete entry
+    std::random_device entropy;
+    const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
+    fs::create_directories(work / "maps");
+    fs::copy_file(mapSource, work / "maps" / (name + ".map"));
+    const std::string command = "cd " + shellQuote(work) + " && " + shellQuote(reference) +
+                                " -v -threads 2 -game quake3 -fs_basepath " + shellQuote(openArenaBase()) +
+                                " -fs_basegame baseoa -bsp -meta " + extraOptions + " " + shellQuote("maps/" + name + ".map");
+    std::string output;
+    const int status = runCommand(command, &output);
+    if (status != 0) {
+        fs::remove_all(work);
+        throw std::runtime_error("reference -bsp failed on " + mapSource.string() + ": " + output.substr(0, 400));
+    }
+    fs::create_directories(work / "keep");
+    for (const char* ext : {".prt", ".lin", ".bsp"})
+        if (fs::exists(work / "maps" / (name + ext))) fs::rename(work / "maps" / (name + ext), work / "keep" / (name + ext));
+    writeFileAtomic(work / "keep" / (name + ".log"), output);
+    fs::remove_all(work / "maps");
+    std::error_code ec;
+    fs::rename(work / "keep", final, ec);  // another process may have put its copy there first
+    fs::remove_all(work);
+    return final;
+}
+
+const ShaderTable& openArenaShaders() {
+    static Log log(false);
+    static const ShaderTable table = [] {
+        VfsOptions options;
+        options.basePaths.push_back(openArenaBase());
+        options.baseGame = "baseoa";
+        Vfs vfs(options, log);
+        return loadShaderTable(vfs, log);
+    }();
+    return table;
+}
+
+}  // namespace q3::bspstage::test

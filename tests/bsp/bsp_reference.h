@@ -1,0 +1,20 @@
+// Shared by the tests that compare the -bsp steps with q3map2 2.5.17n on the oacmp maps.
+#pragma once
+
+#include <filesystem>
+
+#include "shader_info.h"
+
+namespace q3::bspstage::test {
+
+// The reference's compile (-v -bsp -meta and `extraOptions`) of `mapSource`, cached under
+// <data cache>/bsp-prt/<key>/ (the key names the map, the reference binary's size and mtime, the
+// .map's hash and the extra options): the folder holding NAME.prt (or NAME.lin), NAME.bsp and
+// NAME.log (the -v output). Throws when it fails.
+std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
+                                       const std::string& extraOptions = {});
+
+// Every shader of the OpenArena data (loaded once).
+const ShaderTable& openArenaShaders();
+
+}  // namespace q3::bspstage::test

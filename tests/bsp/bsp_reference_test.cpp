@@ -1,0 +1,135 @@
+// Our world structure against q3map2 2.5.17n on the oacmp maps: clusters, portals and solid faces
+// from the reference's .prt, the leaf count of its final face tree from its -v log, and the .prt
+// text itself.
+//
+// The reference compiles are cached (bsp_reference.h), so a rerun does not compile again.
+//
+// Tolerance: the counts must be equal. The .prt text is byte-identical on 12 of the 13 maps; on
+// oacmpctf2 169 of 5101 lines differ in the last float bits of coordinates (some diagonal plane
+// normals are stored one float step apart), so up to 5 % of the lines may differ.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "bsp_brushes.h"
+#include "bsp_reference.h"
+#include "log.h"
+#include "map_file.h"
+#include "reference_fixture.h"
+#include "test_data.h"
+#include "world_structure.h"
+
+namespace q3::bspstage {
+namespace {
+
+using test::openArenaShaders;
+using test::referenceCompile;
+
+namespace fs = std::filesystem;
+
+struct StructureCounts {
+    int clusters = -1;
+    int portals = -1;
+    int solidFaces = -1;
+    int leafs = -1;
+    std::string portalFile;
+};
+
+StructureCounts referenceCounts(const fs::path& folder, const std::string& name) {
+    StructureCounts c;
+    std::ifstream prt(folder / (name + ".prt"), std::ios::binary);
+    c.portalFile.assign(std::istreambuf_iterator<char>(prt), std::istreambuf_iterator<char>());
+    std::istringstream header(c.portalFile);
+    std::string magic;
+    header >> magic >> c.clusters >> c.portals >> c.solidFaces;
+    // The last "--- FaceBSP ---" block is the visible-face tree: its "N leafs" line.
+    std::ifstream log(folder / (name + ".log"));
+    bool inFaceBsp = false;
+    for (std::string line; std::getline(log, line);) {
+        if (line.find("--- FaceBSP ---") != std::string::npos) inFaceBsp = true;
+        int value = 0;
+        char word[32] = {};
+        if (inFaceBsp && std::sscanf(line.c_str(), "%d %31s", &value, word) == 2 && std::string(word) == "leafs") {
+            c.leafs = value;
+            inFaceBsp = false;
+        }
+    }
+    return c;
+}
+
+StructureCounts ourCounts(const fs::path& mapSource, const WorldStructureOptions& options = {}) {
+    Log log(false);
+    const map::MapFile file = map::loadMap(mapSource);
+    LoadedMap map = loadMapForBsp(file, openArenaShaders(), {}, log);
+    const WorldStructure world = buildWorldStructure(map, options, log);
+    EXPECT_FALSE(world.leaked) << mapSource;
+    return {world.clusters.clusters, world.clusters.portals, world.clusters.solidFaces, world.second.faceBsp.leafs,
+            world.portalFile};
+}
+
+// Lines that differ at the same position, and the number of lines of `reference`.
+std::pair<int, int> differingLines(const std::string& ours, const std::string& reference) {
+    std::istringstream a(ours), b(reference);
+    int differ = 0, total = 0;
+    for (std::string la, lb; std::getline(b, lb);) {
+        ++total;
+        if (!std::getline(a, la) || la != lb) ++differ;
+    }
+    return {differ, total};
+}
+
+class BspReferenceCounts : public conformance::ReferenceTest<fs::path> {};
+
+TEST_P(BspReferenceCounts, PortalFileAndLeafCountsMatchQ3map2) {
+    const fs::path mapSource = GetParam();
+    const std::string name = mapSource.stem().string();
+    const StructureCounts ref = referenceCounts(referenceCompile(reference(), mapSource), name);
+    ASSERT_GT(ref.clusters, 0) << "no reference .prt for " << name;
+    ASSERT_GT(ref.leafs, 0) << "no leaf count in the reference log for " << name;
+    const StructureCounts ours = ourCounts(mapSource);
+    const auto [differ, lines] = differingLines(ours.portalFile, ref.portalFile);
+    std::printf("%-10s clusters %5d / %5d  portals %5d / %5d  solid faces %5d / %5d  leafs %5d / %5d  (ours / q3map2)  "
+                ".prt: %s\n",
+                name.c_str(), ours.clusters, ref.clusters, ours.portals, ref.portals, ours.solidFaces, ref.solidFaces,
+                ours.leafs, ref.leafs,
+                differ ? (std::to_string(differ) + " of " + std::to_string(lines) + " lines differ").c_str() : "identical");
+    EXPECT_EQ(ours.clusters, ref.clusters);
+    EXPECT_EQ(ours.portals, ref.portals);
+    EXPECT_EQ(ours.solidFaces, ref.solidFaces);
+    EXPECT_EQ(ours.leafs, ref.leafs);
+    EXPECT_LE(differ, lines / 20);
+}
+
+std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, BspReferenceCounts, ::testing::ValuesIn(q3::test::oacmpMapSourcesForRegistration()), mapName);
+
+// -altsplit on two maps: the .prt must be byte-identical.
+class AlternateSplit : public conformance::ReferenceTest<std::string> {};
+
+TEST_P(AlternateSplit, PortalFileMatchesQ3map2) {
+    fs::path mapSource;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == GetParam()) mapSource = p;
+    ASSERT_FALSE(mapSource.empty()) << GetParam();
+    const StructureCounts ref = referenceCounts(referenceCompile(reference(), mapSource, "-altsplit"), GetParam());
+    WorldStructureOptions options;
+    options.alternateSplit = true;
+    const StructureCounts ours = ourCounts(mapSource, options);
+    std::printf("%-10s -altsplit clusters %5d / %5d  portals %5d / %5d  (ours / q3map2)\n", GetParam().c_str(),
+                ours.clusters, ref.clusters, ours.portals, ref.portals);
+    EXPECT_EQ(ours.portalFile, ref.portalFile);
+    // The alternative score builds another tree than the default one.
+    EXPECT_NE(ours.portalFile, ourCounts(mapSource).portalFile);
+}
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, AlternateSplit, ::testing::Values("oacmpdm1", "oacmpdm7"));
+
+TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(q3::test::oacmpMapSources().size(), 13u); }
+
+}  // namespace
+}  // namespace q3::bspstage
