@@ -1,6 +1,7 @@
 #include "world_structure.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "brush_filter.h"
 #include "file_io.h"
@@ -87,9 +88,10 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
     if (ignoreLeaks && out.flood == FloodResult::Leaked) out.flood = FloodResult::Good;
     out.leaked = out.flood != FloodResult::Good;
     if (out.leaked) {
-        log.error("**********************");
-        log.error("******* leaked *******");
-        log.error("**********************");
+        // q3map2's banner; the compile goes on (the map is usable, only without vis).
+        log.info("**********************");
+        log.info("******* leaked *******");
+        log.info("**********************");
         out.leakLine = leakLineText(tree, map.entities, &out.leakingEntity);
         if (out.leakingEntity >= 0)
             log.info("Entity " + std::to_string(map.entities[size_t(out.leakingEntity)].mapEntityNum) +
