@@ -44,8 +44,9 @@ FloodResult floodPass(Tree& tree, LoadedMap& map, TreePassCounts& counts, Log& l
     log.debug("--- FloodEntities ---");
     const FloodResult result = floodEntities(tree, map.entities, map.planes, log, &counts.flood);
     log.debug(counted(counts.flood.floodedLeafs, "flooded leafs"));
-    if (result == FloodResult::Empty) log.warning("no entities in open -- no filling");
-    if (result == FloodResult::Leaked) log.warning("entity reached from outside -- leak detected");
+    // Verbose only, as in q3map2: the leak banner and the line file say it for everyone.
+    if (result == FloodResult::Empty) log.debug("no entities in open -- no filling");
+    if (result == FloodResult::Leaked) log.debug("entity reached from outside -- leak detected");
     return result;
 }
 
