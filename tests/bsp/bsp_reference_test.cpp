@@ -4,9 +4,7 @@
 //
 // The reference compiles are cached (bsp_reference.h), so a rerun does not compile again.
 //
-// Tolerance: the counts must be equal. The .prt text is byte-identical on 12 of the 13 maps; on
-// oacmpctf2 169 of 5101 lines differ in the last float bits of coordinates (some diagonal plane
-// normals are stored one float step apart), so up to 5 % of the lines may differ.
+// No tolerance: the counts must be equal and the .prt text byte-identical (it is on all 13 maps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -103,7 +101,7 @@ TEST_P(BspReferenceCounts, PortalFileAndLeafCountsMatchQ3map2) {
     EXPECT_EQ(ours.portals, ref.portals);
     EXPECT_EQ(ours.solidFaces, ref.solidFaces);
     EXPECT_EQ(ours.leafs, ref.leafs);
-    EXPECT_LE(differ, lines / 20);
+    EXPECT_EQ(differ, 0) << "of " << lines << " lines";
 }
 
 std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
