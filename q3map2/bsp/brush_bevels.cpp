@@ -82,6 +82,18 @@ bool isNewSupportingPlane(Brush& brush, const DPlane& plane, uint32_t edgeSurfac
     return true;
 }
 
+// q3map2 normalises float vectors through doubles; false when the vector was shorter than 0.5.
+bool normalizeLikeQ3map2(Vec3& v) {
+    const DVec3 d(v);
+    const double len = length(d);
+    if (len == 0) {
+        v = {};
+        return false;
+    }
+    v = (d / len).toFloat();
+    return float(len) >= 0.5f;
+}
+
 int addEdgeBevels(Brush& brush, PlaneSet& planes) {
     if (brush.sides.size() == 6) return 0;  // a box needs none
     int added = 0;
@@ -92,9 +104,7 @@ int addEdgeBevels(Brush& brush, PlaneSet& planes) {
             // In 32-bit floats like q3map2: candidates touching a vertex are accepted or refused
             // by 0.1-unit tests whose outcome can depend on the last bits.
             Vec3 edge = w[j].toFloat() - w[(j + 1) % w.size()].toFloat();
-            const float len = length(edge);
-            if (len < 0.5f) continue;
-            edge = edge / len;
+            if (!normalizeLikeQ3map2(edge)) continue;
             DVec3 snapped(edge);
             snapNormal(snapped, planes.epsilons().normal);
             edge = snapped.toFloat();
@@ -102,9 +112,7 @@ int addEdgeBevels(Brush& brush, PlaneSet& planes) {
             for (int axis = 0; axis < 3; ++axis) {
                 for (int dir = -1; dir <= 1; dir += 2) {
                     Vec3 normal = cross(edge, DVec3::axis(axis, dir).toFloat());
-                    const float normalLength = length(normal);
-                    if (normalLength < 0.5f) continue;
-                    normal = normal / normalLength;
+                    if (!normalizeLikeQ3map2(normal)) continue;
                     const DPlane plane{DVec3(normal), double(dot(w[j].toFloat(), normal))};
                     if (!isNewSupportingPlane(brush, plane, surfaceFlags, planes)) continue;
                     BrushSide bevel;

@@ -1,6 +1,7 @@
 #include "world_structure.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "brush_filter.h"
 #include "file_io.h"
@@ -43,8 +44,9 @@ FloodResult floodPass(Tree& tree, LoadedMap& map, TreePassCounts& counts, Log& l
     log.debug("--- FloodEntities ---");
     const FloodResult result = floodEntities(tree, map.entities, map.planes, log, &counts.flood);
     log.debug(counted(counts.flood.floodedLeafs, "flooded leafs"));
-    if (result == FloodResult::Empty) log.warning("no entities in open -- no filling");
-    if (result == FloodResult::Leaked) log.warning("entity reached from outside -- leak detected");
+    // Verbose only, as in q3map2: the leak banner and the line file say it for everyone.
+    if (result == FloodResult::Empty) log.debug("no entities in open -- no filling");
+    if (result == FloodResult::Leaked) log.debug("entity reached from outside -- leak detected");
     return result;
 }
 
@@ -87,9 +89,10 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
     if (ignoreLeaks && out.flood == FloodResult::Leaked) out.flood = FloodResult::Good;
     out.leaked = out.flood != FloodResult::Good;
     if (out.leaked) {
-        log.error("**********************");
-        log.error("******* leaked *******");
-        log.error("**********************");
+        // q3map2's banner; the compile goes on (the map is usable, only without vis).
+        log.info("**********************");
+        log.info("******* leaked *******");
+        log.info("**********************");
         out.leakLine = leakLineText(tree, map.entities, &out.leakingEntity);
         if (out.leakingEntity >= 0)
             log.info("Entity " + std::to_string(map.entities[size_t(out.leakingEntity)].mapEntityNum) +

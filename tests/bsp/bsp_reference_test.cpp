@@ -4,12 +4,11 @@
 //
 // The reference compiles are cached (bsp_reference.h), so a rerun does not compile again.
 //
-// Tolerance: the counts must be equal. The .prt text is byte-identical on 12 of the 13 maps; on
-// oacmpctf2 169 of 5101 lines differ in the last float bits of coordinates (some diagonal plane
-// normals are stored one float step apart), so up to 5 % of the lines may differ.
+// No tolerance: the counts must be equal and the .prt text byte-identical (it is on all 13 maps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -17,6 +16,7 @@
 
 #include "bsp_brushes.h"
 #include "bsp_reference.h"
+#include "file_io.h"
 #include "log.h"
 #include "map_file.h"
 #include "reference_fixture.h"
@@ -101,7 +101,7 @@ TEST_P(BspReferenceCounts, PortalFileAndLeafCountsMatchQ3map2) {
     EXPECT_EQ(ours.portals, ref.portals);
     EXPECT_EQ(ours.solidFaces, ref.solidFaces);
     EXPECT_EQ(ours.leafs, ref.leafs);
-    EXPECT_LE(differ, lines / 20);
+    EXPECT_EQ(differ, 0) << "of " << lines << " lines";
 }
 
 std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
@@ -128,6 +128,44 @@ TEST_P(AlternateSplit, PortalFileMatchesQ3map2) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Oacmp, AlternateSplit, ::testing::Values("oacmpdm1", "oacmpdm7"));
+
+// oacmpdm7 without the first brush of its worldspawn leaks: the line files must be identical.
+class LeakLine : public conformance::ReferenceTest<int> {};
+
+TEST_P(LeakLine, LineFileMatchesQ3map2) {
+    fs::path source;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == "oacmpdm7") source = p;
+    ASSERT_FALSE(source.empty());
+    std::ifstream in(source, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The editor's comments mark the brushes: cut "// brush 0" of "// entity 0" up to "// brush 1".
+    const size_t worldspawn = text.find("// entity 0");
+    const size_t first = text.find("// brush 0", worldspawn);
+    size_t second = text.find("// brush 1", first);
+    while (second != std::string::npos && std::isdigit(static_cast<unsigned char>(text[second + 10])))
+        second = text.find("// brush 1", second + 1);  // not "// brush 10"
+    ASSERT_NE(second, std::string::npos);
+    text.erase(first, second - first);
+    const fs::path leaky = q3::test::tempDir() / "oacmpdm7leak.map";
+    writeFileAtomic(leaky, text);
+
+    const fs::path folder = referenceCompile(reference(), leaky);
+    std::ifstream lin(folder / "oacmpdm7leak.lin", std::ios::binary);
+    const std::string referenceLine((std::istreambuf_iterator<char>(lin)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(referenceLine.empty()) << "q3map2 wrote no line file";
+    EXPECT_FALSE(fs::exists(folder / "oacmpdm7leak.prt"));
+
+    Log log(false);
+    const map::MapFile file = map::loadMap(leaky);
+    LoadedMap map = loadMapForBsp(file, openArenaShaders(), {}, log);
+    const WorldStructure world = buildWorldStructure(map, {}, log);
+    EXPECT_EQ(world.flood, FloodResult::Leaked);
+    EXPECT_TRUE(world.portalFile.empty());
+    EXPECT_EQ(world.leakLine, referenceLine);
+}
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, LeakLine, ::testing::Values(0));
 
 TEST(BspReferenceCounts, AllOacmpMapsAreThere) { EXPECT_EQ(q3::test::oacmpMapSources().size(), 13u); }
 
