@@ -1,7 +1,3 @@
-
-
-
-
 #include "portal_flow.h"
 
 #include "cluster_vis.h"
