@@ -1,7 +1,3 @@
-
-
-
-
 #include "portal_flow.h"
 
 #include "cluster_vis.h"
@@ -42,8 +38,17 @@ struct FlowLevel {
     std::array<int, 2> edgesDone{};
 };
 
+// A portal of a cluster as the walk first looks at it, packed per cluster so that rejecting a
+// candidate by its bits never touches the portal itself.
+struct LeafExit {
+    int portal;
+    int leaf;        // the cluster it leads into
+    int passageSlot;  // its index in the cluster's portal list (the passage row)
+};
+
 struct FlowShared {
     const VisGraph& graph;
+    const std::vector<std::vector<LeafExit>>& exits;  // per cluster, removed portals left out
     const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
     const Passages* passages;
     FlowMode mode;
@@ -162,18 +167,17 @@ private:
         // Clusters are convex (q3map2 merges only convex ones): a line never enters one twice.
         if (scratch_.onStack[leaf]) return;
         scratch_.onStack[leaf] = 1;
-        const std::vector<int>& leafPortals = s_.graph.leafs[leaf].portals;
         level(depth + 1).edgesDone = {0, 0};
-        for (size_t k = 0; k < leafPortals.size(); ++k) {
+        for (const LeafExit& exit : s_.exits[leaf]) {
             // `level` may grow the scratch in deeper calls: fetch the levels again each time.
             FlowLevel& prev = *scratch_.levels[depth];
             FlowLevel& cur = *scratch_.levels[depth + 1];
-            const int pnum = leafPortals[k];
-            const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
-            if (p.removed || !prev.mightSeeCluster(static_cast<size_t>(p.leaf))) continue;
+            if (!prev.mightSeeCluster(static_cast<size_t>(exit.leaf))) continue;
+            const int pnum = exit.portal;
             // Nothing new to find behind p: its own cluster is in the set, so this also keeps
             // every cluster not yet marked.
-            if (!narrow(prev, cur, pnum, passageRow(from, k))) continue;
+            if (!narrow(prev, cur, pnum, passageRow(from, static_cast<size_t>(exit.passageSlot)))) continue;
+            const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
             if (s_.mode == FlowMode::Passage) {
                 setBit(vis_, static_cast<size_t>(p.leaf));
                 enter(pnum, depth + 1);
@@ -224,7 +228,15 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
 
     const BitMatrix floodClusters = portalClusterSets(graph, base.flood);
     BitMatrix clusterVis(n, static_cast<size_t>(graph.clusterCount));
-    FlowShared shared{graph, floodClusters, passages, options.mode, clusterVis, waveOf};
+    std::vector<std::vector<LeafExit>> exits(graph.leafs.size());
+    for (size_t l = 0; l < graph.leafs.size(); ++l) {
+        const std::vector<int>& portals = graph.leafs[l].portals;
+        for (size_t k = 0; k < portals.size(); ++k) {
+            const VisPortal& p = graph.portals[static_cast<size_t>(portals[k])];
+            if (!p.removed) exits[l].push_back({portals[k], p.leaf, static_cast<int>(k)});
+        }
+    }
+    FlowShared shared{graph, exits, floodClusters, passages, options.mode, clusterVis, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
         // Within a wave the largest first, so that the longest walks do not start last.

@@ -10,7 +10,7 @@
 namespace q3::vis {
 
 struct VisPortal {
-    Winding winding;
+    // The fields every test reads come first: the winding behind them is most of the size.
     Plane plane;       // normal points into `leaf`
     int leaf = 0;      // the cluster this portal leads into
     int owner = 0;     // the cluster this portal lives in
@@ -19,6 +19,7 @@ struct VisPortal {
     bool hint = false;
     bool sky = false;
     bool removed = false;  // merged away (-merge, -mergeportals)
+    Winding winding;
 };
 
 struct VisLeaf {

@@ -3,7 +3,6 @@
 #include "base_vis.h"
 #include "bspfile.h"
 #include "cluster_vis.h"
-#include "file_io.h"
 #include "leaf_merge.h"
 #include "passages.h"
 #include "portal_file.h"
@@ -22,9 +21,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string format(const char* pattern, double a, double b = 0) {
+// printf into a string, for q3map2's number formats.
+std::string formatNumbers(const char* pattern, double a, double b = 0) {
     char buf[128];
     std::snprintf(buf, sizeof buf, pattern, a, b);
+    return buf;
+}
+
+// "   271 portalclusters": q3map2's right-aligned count lines.
+std::string countLine(size_t count, const char* label) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%6zu %s", count, label);
     return buf;
 }
 
@@ -56,11 +63,12 @@ void reportSummary(const VisSummary& s, bool histogram, Log& log) {
     if (histogram)
         for (size_t v = 0; v < s.histogram.size(); ++v)
             if (s.histogram[v])
-                log.info(format("%4.0f clusters have exactly %4.0f visible clusters", s.histogram[v], static_cast<double>(v)));
+                log.info(formatNumbers("%4.0f clusters have exactly %4.0f visible clusters", s.histogram[v],
+                                       static_cast<double>(v)));
     const double total = s.averageVisible * s.clusters;
     log.info("Total clusters: " + std::to_string(s.clusters));
-    log.info(format("Total visible clusters: %.0f", total));
-    log.info(format("Average clusters visible: %.2f (%.3f%%/total)", s.averageVisible,
+    log.info(formatNumbers("Total visible clusters: %.0f", total));
+    log.info(formatNumbers("Average clusters visible: %.2f (%.3f%%/total)", s.averageVisible,
                     s.clusters ? s.averageVisible / s.clusters * 100.0 : 0.0));
     log.info("  Minimum: " + std::to_string(s.minVisible) + "  Maximum: " + std::to_string(s.maxVisible));
 }
@@ -102,9 +110,9 @@ int runVisStage(const VisOptions& options, const CommonOptions& common, Log& log
     bsp::Bsp bsp = bsp::readBsp(bspPath, bsp::ReadOptions{common.force, true});
     log.info("Loading " + prtPath.string());
     const PortalFile file = readPortalFile(prtPath);
-    log.info(format("%6.0f portalclusters", file.clusterCount));
-    log.info(format("%6.0f numportals", static_cast<double>(file.portals.size())));
-    log.info(format("%6.0f numfaces", static_cast<double>(file.faces.size())));
+    log.info(countLine(static_cast<size_t>(file.clusterCount), "portalclusters"));
+    log.info(countLine(file.portals.size(), "numportals"));
+    log.info(countLine(file.faces.size(), "numfaces"));
     const int leafClusters = leafClusterCount(bsp);
     if (file.clusterCount != leafClusters)
         throw PortalFileError(prtPath.string() + ": " + std::to_string(file.clusterCount) +
@@ -118,23 +126,24 @@ int runVisStage(const VisOptions& options, const CommonOptions& common, Log& log
     std::vector<bsp::Entity> entities = bsp::parseEntities(bsp.entities, bspPath.string());
     if (entities.empty()) throw bsp::BspError(bspPath.string() + ": entities: no worldspawn");
     const FarPlane farPlane = farPlaneOf(entities[0]);
-    if (farPlane.distance != 0) log.info(format("farplane distance = %.1f", farPlane.distance));
+    if (farPlane.distance != 0) log.info(formatNumbers("farplane distance = %.1f", farPlane.distance));
     bsp::injectCommandLine(entities[0], common.commandLine);
     bsp.entities = bsp::unparseEntities(entities);
 
     VisGraph graph = buildVisGraph(file, options.hint);
-    if (options.merge || options.hint) log.info(std::to_string(mergeLeaves(graph, options.hint)) + " leaves merged");
+    if (options.merge || options.hint)
+        log.info(countLine(static_cast<size_t>(mergeLeaves(graph, options.hint)), "leaves merged"));
     if (options.merge || options.hint || options.mergePortals) {
         const PortalMergeCount merged = mergeLeafPortals(graph);
-        log.info(std::to_string(merged.portals) + " portals merged");
-        log.info(std::to_string(merged.hintPortals) + " hint portals merged");
+        log.info(countLine(static_cast<size_t>(merged.portals), "portals merged"));
+        log.info(countLine(static_cast<size_t>(merged.hintPortals), "hint portals merged"));
     }
     const size_t portalCount = graph.portals.size();
     const auto active = std::count_if(graph.portals.begin(), graph.portals.end(), [](const VisPortal& p) { return !p.removed; });
     const auto hints = std::count_if(graph.portals.begin(), graph.portals.end(),
                                      [](const VisPortal& p) { return !p.removed && p.hint; });
-    log.info(format("%6.0f active portals", static_cast<double>(active)));
-    log.info(format("%6.0f hint portals", static_cast<double>(hints)));
+    log.info(countLine(static_cast<size_t>(active), "active portals"));
+    log.info(countLine(static_cast<size_t>(hints), "hint portals"));
 
     const BaseVis base = withProgress(log, "BasePortalVis", portalCount,
                                       [&](auto advance) { return computeBaseVis(graph, farPlane, advance); });

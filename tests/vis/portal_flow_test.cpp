@@ -75,6 +75,36 @@ TEST(PortalFlow, StraightCorridorSeesEnd) {
         for (int b = 0; b < 4; ++b) EXPECT_TRUE(sees(lump, a, b)) << a << " -> " << b;
 }
 
+TEST(FarPlane, ParsesDistanceAndMode) {
+    EXPECT_EQ(FarPlane::parse("").distance, 0.0f);
+    const FarPlane plain = FarPlane::parse("512");
+    EXPECT_EQ(plain.distance, 512.0f);
+    EXPECT_EQ(plain.mode, '2');  // no letter: centre distance minus both radii
+    const FarPlane origins = FarPlane::parse("1000o");
+    EXPECT_EQ(origins.distance, 1000.0f);
+    EXPECT_EQ(origins.mode, 'o');
+}
+
+TEST(FarPlane, CullsPortalsFartherApartThanTheDistance) {
+    // The straight corridor: openings 10 units apart, each about 7.07 in radius. At a far plane
+    // of 5 the first and last openings (20 apart, 5.9 between their spheres) no longer see each
+    // other, so room 0 loses room 3 even in the base flood; the middle ones stay.
+    const PortalFile file = parsePortalFile(
+        "PRT1\n4\n3\n0\n" + opening(0, 1, 0, 0) + opening(1, 2, 10, 0) + opening(2, 3, 20, 0), "line.prt");
+    const VisGraph graph = buildVisGraph(file, false);
+    const std::vector<uint8_t> culled = buildVisibilityLump(graph, portalClusterSets(graph, computeBaseVis(graph, FarPlane::parse("5")).flood));
+    EXPECT_FALSE(sees(culled, 0, 3));
+    EXPECT_FALSE(sees(culled, 3, 0));
+    EXPECT_TRUE(sees(culled, 0, 2));
+    EXPECT_TRUE(sees(culled, 1, 3));
+    // Sky portals are exempt.
+    PortalFile skyFile = file;
+    for (FilePortal& p : skyFile.portals) p.flags = kPortalFlagSky;
+    const VisGraph sky = buildVisGraph(skyFile, false);
+    const std::vector<uint8_t> kept = buildVisibilityLump(sky, portalClusterSets(sky, computeBaseVis(sky, FarPlane::parse("5")).flood));
+    EXPECT_TRUE(sees(kept, 0, 3));
+}
+
 TEST(PortalFlow, WavesCoverEveryPortalOnceInOrder) {
     for (size_t n : {0u, 1u, 31u, 32u, 33u, 1000u, 12345u}) {
         const std::vector<size_t> bounds = flowWaveBounds(n);
