@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "lights.h"
 #include "winding_ops.h"
@@ -107,6 +108,24 @@ Vec3 LightImage::averageColor() const {
 
 namespace {
 
+// One emitting polygon of `g` (corner indexes into its vertexes): its normal is the sum of the
+// corners' vertex normals, or the polygon's own (Quake winding order) when those cancel or are
+// missing; a polygon with neither emits nothing.
+void emitPolygon(std::vector<Light>& out, const EmitterGeometry& g, std::span<const size_t> corners,
+                 const LightingShader& shader, const LightScales& scales, float subdivide) {
+    const bool withNormals = g.normals.size() == g.xyz.size();
+    Winding w;
+    Vec3 normal;
+    for (size_t c : corners) {
+        w.push_back(g.xyz[c]);
+        if (withNormals) normal = normal + g.normals[c];
+    }
+    if (length(normal) <= 0) normal = cross(w[2] - w[0], w[1] - w[0]);
+    if (length(normal) <= 0) return;
+    AreaLightContext ctx{shader, scales, normalize(normal), subdivide, out};
+    emitAreaLight(ctx, w);
+}
+
 // q3map2 RadLightForPatch: each quad of the lighting mesh emits as one four-corner winding, its
 // corners starting at alternating ones ((x + y) & 1) as the mesh's diagonals do. q3map2 means to
 // split non-planar quads into triangles, but its planarity test measures a corner that defines the
@@ -116,22 +135,12 @@ namespace {
 void appendPatchAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const LightingShader& shader,
                            const LightScales& scales, float subdivide) {
     const int w = g.meshWidth, h = g.meshHeight;
-    const bool withNormals = g.normals.size() == g.xyz.size();
     for (int y = 0; y + 1 < h; ++y)
         for (int x = 0; x + 1 < w; ++x) {
-            const size_t corners[5] = {size_t(x + y * w), size_t(x + (y + 1) * w), size_t(x + 1 + (y + 1) * w),
-                                       size_t(x + 1 + y * w), size_t(x + y * w)};
-            const int r = (x + y) & 1;
-            Winding quad;
-            Vec3 normal;
-            for (int k = 0; k < 4; ++k) {
-                quad.push_back(g.xyz[corners[r + k]]);
-                if (withNormals) normal = normal + g.normals[corners[r + k]];
-            }
-            if (length(normal) <= 0) normal = cross(quad[2] - quad[0], quad[1] - quad[0]);
-            if (length(normal) <= 0) continue;
-            AreaLightContext ctx{shader, scales, normalize(normal), subdivide, out};
-            emitAreaLight(ctx, quad);
+            const size_t around[5] = {size_t(x + y * w), size_t(x + (y + 1) * w), size_t(x + 1 + (y + 1) * w),
+                                      size_t(x + 1 + y * w), size_t(x + y * w)};
+            const size_t r = size_t((x + y) & 1);
+            emitPolygon(out, g, std::span<const size_t>(around + r, 4), shader, scales, subdivide);
         }
 }
 
@@ -146,15 +155,8 @@ void appendAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const L
         return;
     }
     for (size_t i = 0; i + 2 < g.triangles.size(); i += 3) {
-        Winding w{g.xyz[g.triangles[i]], g.xyz[g.triangles[i + 1]], g.xyz[g.triangles[i + 2]]};
-        Vec3 normal;
-        if (g.normals.size() == g.xyz.size()) {
-            normal = g.normals[g.triangles[i]] + g.normals[g.triangles[i + 1]] + g.normals[g.triangles[i + 2]];
-        }
-        if (length(normal) <= 0) normal = cross(w[2] - w[0], w[1] - w[0]);  // Quake winding order
-        if (length(normal) <= 0) continue;
-        AreaLightContext ctx{shader, scales, normalize(normal), subdivide, out};
-        emitAreaLight(ctx, w);
+        const size_t triangle[3] = {g.triangles[i], g.triangles[i + 1], g.triangles[i + 2]};
+        emitPolygon(out, g, triangle, shader, scales, subdivide);
     }
 }
 
