@@ -183,7 +183,8 @@ struct ShaderInfo {
     int styleMarker = 0;                   // q3map_styleMarker = 1, q3map_styleMarker2 = 2
     bool twoSided = false;                 // cull none / disable / twosided
 
-    // Images (paths without extension).
+    // Images, as the script spells them: loading drops one extension and tries .tga, .png, .jpg
+    // (q3map2's ImageLoad), so "x.blend.tga" is x.blend's image, not x's.
     // The light image as q3map2 derives it, in script order: q3map_lightImage (always wins);
     // skyParms sets <env>_up while no light image is known; the first stage image
     // (map/clampMap/animMap first frame, not $lightmap or *white) is taken only while neither a

@@ -35,13 +35,6 @@ bool startsWithNoCase(std::string_view s, std::string_view prefix) {
     return s.size() >= prefix.size() && equalsNoCase(s.substr(0, prefix.size()), prefix);
 }
 
-// Image path as q3map2 keeps it: extension removed.
-std::string withoutExtension(std::string_view path) {
-    size_t dot = path.rfind('.');
-    size_t slash = path.find_last_of("/\\");
-    if (dot != std::string_view::npos && (slash == std::string_view::npos || dot > slash)) path = path.substr(0, dot);
-    return std::string(path);
-}
 
 // Reads one shader script. Holds the tokenizer and the shader being filled; no state survives a
 // call to parseShaderScript.
@@ -121,7 +114,6 @@ private:
                 if (animated) argToken(shader, token);  // frequency
                 std::string image = argToken(shader, token);
                 if (image.empty() || image[0] == '$' || image[0] == '*') continue;
-                image = withoutExtension(image);
                 if (shader.firstStageImage.empty()) shader.firstStageImage = image;
                 if (shader.lightImage.empty() && shader.editorImage.empty()) shader.lightImage = image;
             }
@@ -194,11 +186,11 @@ private:
                 applyParm(shader, "detail");
             }
         } else if (is("qer_editorImage")) {
-            shader.editorImage = withoutExtension(argToken(shader, token));
+            shader.editorImage = argToken(shader, token);
         } else if (is("q3map_normalImage")) {
-            shader.normalImage = withoutExtension(argToken(shader, token));
+            shader.normalImage = argToken(shader, token);
         } else if (is("q3map_lightImage")) {
-            shader.lightImage = withoutExtension(argToken(shader, token));
+            shader.lightImage = argToken(shader, token);
         } else if (is("skyParms")) {
             std::string env = argToken(shader, token);
             if (env != "-" && !equalsNoCase(env, "full")) {

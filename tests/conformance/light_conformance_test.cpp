@@ -58,18 +58,13 @@ std::vector<MapCase> cases() {
     out.push_back(MapCase{"oacmpdm5", {"-fast"}, {}});
     {
         // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights.
-        // Not met yet (measured at -fast): lightmaps 1.070 (goal within 3 %), grid directed 1.046
-        // (goal within 3 %), ambient 1.026 .. 1.046 and its correlation 0.86 .. 0.96 (goal 0.98). The
-        // entity lights alone (-areascale 0) match: lightmaps 1.001, correlation 0.9994. The
-        // per-surface correlation 0.9944 is below the goal too. Met: classes within 4.3 %, grid
-        // directed correlation 0.986, directions 97.7 %.
+        // Measured at -fast: lightmaps 1.006, correlation 0.997, classes within 0.2 %, grid ambient
+        // 0.974 / directed 0.991, directed correlation 0.988, directions 98.1 %. Not met: the grid's
+        // ambient correlation, 0.86 .. 0.96 over runs (goal 0.98): the reference's own runs agree on
+        // a quarter of the points only, and which quarter moves the figure (and the ambient total
+        // by a few percent).
         MapCase c{"oacmpctf2", {"-fast"}, {}};
-        c.limits.lightmapRatio = 0.085;
-        c.limits.lightmapCorrelation = 0.993;
-        c.limits.gridAmbient = 0.06;  // 1.026 .. 1.046 as the reference's own runs vary
-        c.limits.gridDirected = 0.06;
-        // 0.86 .. 0.96 over four runs: the reference's own runs agree on a quarter of the points
-        // only, and which quarter moves the figure.
+        c.limits.gridAmbient = 0.05;
         c.limits.gridAmbientCorrelation = 0.80;
         out.push_back(c);
     }

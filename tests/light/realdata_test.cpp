@@ -9,6 +9,8 @@
 #include "light_context.h"
 #include "map_file.h"
 #include "shader_info.h"
+#include "shader_loader.h"
+#include "vfs.h"
 #include "test_data.h"
 
 namespace q3::light {
@@ -66,6 +68,30 @@ TEST(LightShaders, BridgeCopiesLightingDirectives) {
     EXPECT_NEAR(fromImage.color.y, 0.5f, 1e-6);
     EXPECT_EQ(fromImage.color.z, 0.0f);
     EXPECT_EQ(fromImage.lightImage, &img);
+}
+
+TEST(LightShaders, LightImageWithTwoDotsIsLoadedByItsFullName) {
+    // base_light.shader: ceil1_30_110k names "q3map_lightimage textures/base_light/ceil1_30.blend.tga";
+    // q3map2 drops only ".tga", so the light takes the blend image's colour (about 0.45 0.55 1),
+    // not ceil1_30.tga's (about 0.62 0.69 1).
+    VfsOptions options;
+    options.basePaths = {test::openArenaBase()};
+    options.gameDirs = {"baseoa"};
+    Log log(false);
+    Vfs vfs(options, log);
+    ShaderTable table = loadShaderTable(vfs, log);
+    bsp::Bsp bsp;
+    bsp::Shader record{};
+    const std::string name = "textures/base_light/ceil1_30_110k";
+    std::copy(name.begin(), name.end(), record.name);
+    bsp.shaders.push_back(record);
+    LightingShaderSet set = resolveLightingShaders(bsp, table, &vfs, log);
+    ASSERT_EQ(set.shaders.size(), 1u);
+    const LightingShader& s = set.shaders[0];
+    EXPECT_FLOAT_EQ(s.surfaceLight, 110000);
+    EXPECT_NEAR(s.color.x, 34.26f / 76.70f, 0.01f);
+    EXPECT_NEAR(s.color.y, 42.14f / 76.70f, 0.01f);
+    EXPECT_FLOAT_EQ(s.color.z, 1.0f);
 }
 
 TEST(LightRealData, OacmpDm1LightsSceneAndGrid) {

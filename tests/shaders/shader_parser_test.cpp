@@ -176,7 +176,7 @@ TEST(ShaderParser, SurfaceLightDirectives) {
     EXPECT_TRUE(s.backsplashSet);
     EXPECT_FLOAT_EQ(s.bounceScale, 0.5f);
     EXPECT_TRUE(s.noFast);
-    EXPECT_EQ(s.lightImage, "textures/base_light/x.blend");
+    EXPECT_EQ(s.lightImage, "textures/base_light/x.blend.jpg");
     EXPECT_TRUE(s.autosprite);
     EXPECT_TRUE(s.contentFlags & contents::Detail);
 }
@@ -233,7 +233,7 @@ TEST(ShaderParser, LightmapAndVertexDirectives) {
     EXPECT_FLOAT_EQ(s.lightmapBrightness, 3);
     EXPECT_TRUE(s.lightmapMergable);
     EXPECT_FLOAT_EQ(s.shadeAngleDegrees, 120);
-    EXPECT_EQ(s.normalImage, "textures/x_n");
+    EXPECT_EQ(s.normalImage, "textures/x_n.tga");
     EXPECT_FLOAT_EQ(s.vertexScale, 0.25f);
     EXPECT_TRUE(s.noVertexLight);
     EXPECT_TRUE(s.forceSunlight);
@@ -269,24 +269,24 @@ TEST(ShaderParser, FirstStageImageIsTheDefaultLightImage) {
     }
 })");
     EXPECT_TRUE(s.hasStages);
-    EXPECT_EQ(s.firstStageImage, "textures/a/frame1");
-    EXPECT_EQ(s.lightImage, "textures/a/frame1");
-    EXPECT_EQ(s.lightImageCandidates(), (std::vector<std::string>{"textures/a/frame1", "textures/a/wall"}));
+    EXPECT_EQ(s.firstStageImage, "textures/a/frame1.tga");
+    EXPECT_EQ(s.lightImage, "textures/a/frame1.tga");
+    EXPECT_EQ(s.lightImageCandidates(), (std::vector<std::string>{"textures/a/frame1.tga", "textures/a/wall"}));
 
     ShaderInfo c = parseOne("x\n{\n {\n clampMap textures/c.jpg\n }\n}\n");
-    EXPECT_EQ(c.lightImage, "textures/c");
+    EXPECT_EQ(c.lightImage, "textures/c.jpg");
 }
 
 TEST(ShaderParser, LightImageOrderFollowsQ3map2) {
     // An explicit q3map_lightImage wins even after a stage.
     ShaderInfo a = parseOne("x\n{\n { map textures/stage.tga\n }\n q3map_lightImage textures/light.tga\n}\n");
-    EXPECT_EQ(a.lightImage, "textures/light");
-    EXPECT_EQ(a.firstStageImage, "textures/stage");
+    EXPECT_EQ(a.lightImage, "textures/light.tga");
+    EXPECT_EQ(a.firstStageImage, "textures/stage.tga");
     // An editor image before the stages keeps the stage image out of the light image.
     ShaderInfo b = parseOne("x\n{\n qer_editorImage textures/ed.tga\n { map textures/stage.tga\n }\n}\n");
     EXPECT_EQ(b.lightImage, "");
-    EXPECT_EQ(b.firstStageImage, "textures/stage");
-    EXPECT_EQ(b.lightImageCandidates(), (std::vector<std::string>{"textures/ed", "x"}));
+    EXPECT_EQ(b.firstStageImage, "textures/stage.tga");
+    EXPECT_EQ(b.lightImageCandidates(), (std::vector<std::string>{"textures/ed.tga", "x"}));
     // skyParms gives <env>_up; "-" and "full" give nothing.
     ShaderInfo c = parseOne("x\n{\n skyparms env/desert/desert - -\n}\n");
     EXPECT_EQ(c.skyParmsEnv, "env/desert/desert");
@@ -317,7 +317,7 @@ textures/c/d { q3map_surfacelight 10
                          cap);
     ASSERT_EQ(shaders.size(), 2u);
     EXPECT_EQ(shaders[0].name, "textures/a/b");
-    EXPECT_EQ(shaders[0].firstStageImage, "textures/a/b");
+    EXPECT_EQ(shaders[0].firstStageImage, "textures/a/b.tga");
     EXPECT_EQ(shaders[1].name, "textures/c/d");
     EXPECT_FLOAT_EQ(shaders[1].surfaceLight, 10);
     EXPECT_EQ(shaders[1].sourceLine, 12);

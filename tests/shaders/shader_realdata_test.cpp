@@ -128,9 +128,9 @@ TEST(RealShaders, ClownDarkSkySun) {
     EXPECT_TRUE(s.isVertexLit());
     EXPECT_EQ(s.surfaceFlags, surfaceflags::Sky | surfaceflags::NoImpact | surfaceflags::VertexLit);
     EXPECT_EQ(s.contentFlags, contents::Solid);
-    EXPECT_EQ(s.lightImage, "textures/clown/dark_sky");
+    EXPECT_EQ(s.lightImage, "textures/clown/dark_sky.tga");
     EXPECT_EQ(s.skyParmsEnv, "");
-    EXPECT_EQ(s.firstStageImage, "textures/clown/dark_sky");
+    EXPECT_EQ(s.firstStageImage, "textures/clown/dark_sky.tga");
 }
 
 TEST(RealShaders, DesertFactorySunExtAndSkyParms) {
@@ -146,7 +146,7 @@ TEST(RealShaders, DesertFactorySunExtAndSkyParms) {
     EXPECT_NEAR(s.suns[0].color.y, 0.95f, 1e-6f);
     EXPECT_EQ(s.skyParmsEnv, "env/desert/desert");
     EXPECT_EQ(s.lightImage, "env/desert/desert_up");
-    EXPECT_EQ(s.editorImage, "textures/desertfactory_shaders/sky");
+    EXPECT_EQ(s.editorImage, "textures/desertfactory_shaders/sky.jpg");
     EXPECT_FALSE(s.hasStages);
 }
 
@@ -158,12 +158,12 @@ TEST(RealShaders, BaseLightSurfaceLight) {
     // q3map_surfacelight 2000
     EXPECT_FLOAT_EQ(s.surfaceLight, 2000);
     EXPECT_EQ(s.surfaceFlags, surfaceflags::NoMarks);
-    EXPECT_EQ(s.lightImage, "textures/base_light/baslt4_1.blend");
-    EXPECT_EQ(s.editorImage, "textures/base_light/baslt4_1");
-    EXPECT_EQ(s.firstStageImage, "textures/base_light/baslt4_1");
+    EXPECT_EQ(s.lightImage, "textures/base_light/baslt4_1.blend.jpg");
+    EXPECT_EQ(s.editorImage, "textures/base_light/baslt4_1.jpg");
+    EXPECT_EQ(s.firstStageImage, "textures/base_light/baslt4_1.jpg");
     EXPECT_FALSE(s.lightRGB.has_value());
     EXPECT_EQ(s.lightImageCandidates(),
-              (std::vector<std::string>{"textures/base_light/baslt4_1.blend", "textures/base_light/baslt4_1",
+              (std::vector<std::string>{"textures/base_light/baslt4_1.blend.jpg", "textures/base_light/baslt4_1.jpg",
                                         "textures/base_light/baslt4_1_2k"}));
     EXPECT_TRUE(s.explicitScript);
     EXPECT_EQ(s.sourceLine, 2);
@@ -174,10 +174,10 @@ TEST(RealShaders, BraceGluedToShaderName) {
     auto shaders = parseRealFile("pak6-patch085/scripts/am_cf_models.shader");
     const ShaderInfo& s = findIn(shaders, "models/mapobjects/cosmoflash/teleporter3");
     EXPECT_TRUE(s.hasStages);
-    EXPECT_EQ(s.firstStageImage, "textures/cosmo_sfx/pulse");
+    EXPECT_EQ(s.firstStageImage, "textures/cosmo_sfx/pulse.jpg");
     EXPECT_EQ(s.sourceLine, 3);
     const ShaderInfo& torch = findIn(shaders, "models/mapobjects/cosmoflash/torch1");
-    EXPECT_EQ(torch.firstStageImage, "models/mapobjects/cosmoflash/torch1");
+    EXPECT_EQ(torch.firstStageImage, "models/mapobjects/cosmoflash/torch1.tga");
 }
 
 TEST(RealShaders, CountsOfLightingDirectives) {
