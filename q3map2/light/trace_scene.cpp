@@ -174,7 +174,7 @@ bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOption
 }
 
 TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
-    : embree_(std::make_unique<EmbreeState>()) {
+    : embree_(std::make_unique<EmbreeState>()), solidBetween_(options.solidBetween) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
@@ -306,6 +306,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
         tfar = rh.ray.tfar;
+        if (solidBetween_ && solidBetween_(r.from, r.from + r.direction * tfar)) return {};
     } else if (!skyRecords_.empty()) {
         RTCRay ray = makeRay(r, tfar);
         rtcOccluded1(embree_->skyScene, &plain, &ray);
@@ -381,6 +382,8 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
             const int wanted = rays[rh.ray.id].skyIndex;
             if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escapes without meeting the sky
             if (wanted >= 0 && skyRecords_[rh.hit.geomID].skyIndex != wanted) continue;
+            const ShadowRay& r = rays[rh.ray.id];
+            if (solidBetween_ && solidBetween_(r.from, r.from + r.direction * rh.ray.tfar)) continue;
             occlusionBuffer[numOcclusion++] = rh.ray;  // tfar now ends at the sky surface
         }
     }

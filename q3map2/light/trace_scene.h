@@ -16,6 +16,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -41,6 +42,10 @@ struct SceneSurface {
 
 struct TraceSceneOptions {
     bool patchShadows = false;  // -patchshadows: tessellated patches cast shadows
+    // Whether the segment from -> to enters structural solid (the BSP's solid leaves). A sun ray
+    // that does before it meets its sky is blocked, as q3map2's TraceLine stops at the first solid
+    // leaf: a ray grazing up a wall that a vertex lies on stays in the dark. Empty: no test.
+    std::function<bool(Vec3 from, Vec3 to)> solidBetween;
 };
 
 // Every shadow group: the ray mask of rays that any caster may block.
@@ -123,6 +128,7 @@ private:
     std::vector<Record> records_;     // casters other than sky, indexed by Embree geometry id
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
+    std::function<bool(Vec3, Vec3)> solidBetween_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {

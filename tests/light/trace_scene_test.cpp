@@ -1,6 +1,8 @@
 // The Embree shadow scene: opaque walls, sky masking, alpha shadows and light filters.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "light_test_util.h"
 #include "trace_scene.h"
 
@@ -132,6 +134,30 @@ TEST(TraceScene, OpaqueRoofBlocksSun) {
     TraceScene scene(s, {});
     EXPECT_EQ(scene.skyTransmission({0, 0, 0}, {0, 0, 1}, 0), (Vec3{0, 0, 0}));
     EXPECT_EQ(scene.skyTransmission({300, 0, 0}, {0, 0, 1}, 0), (Vec3{1, 1, 1}));
+}
+
+TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {
+    // A sky ceiling and no caster below it; the solid test calls x > 100 solid. A sun ray that
+    // stays out of it reaches the sky; one that starts in it or crosses into it before the sky does
+    // not, singly and in a batch. Segment rays to point lights are the caller's to test.
+    LightingShader sky;
+    sky.sky = true;
+    std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0)};
+    TraceSceneOptions options;
+    options.solidBetween = [](Vec3 from, Vec3 to) { return std::max(from.x, to.x) > 100; };
+    TraceScene scene(s, options);
+    const Vec3 up{0, 0, 1}, slanted = normalize(Vec3{1, 0, 1});
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 0), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.skyTransmission({150, 0, 0}, up, 0), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, slanted, 0), (Vec3{0, 0, 0}));  // reaches x = 500 first
+    EXPECT_EQ(scene.transmission({150, 0, 0}, {150, 0, 400}), (Vec3{1, 1, 1}));
+    std::vector<ShadowRay> rays;
+    for (int i = 0; i < 90; ++i)
+        rays.push_back(TraceScene::skyRay({float(i % 3) * 75.0f, float(i), 0}, i % 2 ? up : slanted, 0));
+    std::vector<Vec3> out(rays.size());
+    scene.traceBatch(rays, out);
+    for (size_t i = 0; i < rays.size(); ++i)
+        EXPECT_EQ(out[i], scene.skyTransmission(rays[i].from, rays[i].direction, 0)) << "ray " << i;
 }
 
 TEST(TraceScene, AlphaShadowAndLightFilterAttenuate) {
