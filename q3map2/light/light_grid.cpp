@@ -38,9 +38,13 @@ void lightGrid(LightContext& ctx, Log& log) {
     const int numPoints = layout.numPoints();
     const GridOptions gridOptions = gridOptionsFromContext(ctx);
     const LightingEnv env = gridLightingEnv(ctx, layout.size);
-    // q3map2 moves a point in solid at random within half a cell along each axis; the same box is
-    // searched here in a fixed order.
-    const Vec3 nudgeBox = layout.size * 0.5f;
+    // q3map2 moves a point in solid at random: 200 tries, the k-th at k/200 x (random - 0.5) of a
+    // cell along each axis, so its box reaches half a cell only in the limit and its tries seldom go
+    // past 0.4 of one. That box, to 0.4 of a cell, is searched here in a fixed order. (The full half
+    // cell lit points q3map2 leaves dark: oacmpctf2 -fast grid ambient correlation 0.936 against
+    // 0.999 now, oacmpdm6 ambient 1.020 against 1.004.)
+    constexpr float kNudgeReach = 0.8f;  // of half a cell
+    const Vec3 nudgeBox = layout.size * (0.5f * kNudgeReach);
     const float nudgeRadius = length(nudgeBox);
     const std::vector<Vec3> nudges = nudgeOffsetsInBox(nudgeBox, 4);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));

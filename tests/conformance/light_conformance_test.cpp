@@ -58,14 +58,12 @@ std::vector<MapCase> cases() {
     out.push_back(MapCase{"oacmpdm5", {"-fast"}, {}});
     {
         // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights.
-        // Measured at -fast: lightmaps 1.006, correlation 0.997, classes within 0.2 %, grid ambient
-        // 0.974 / directed 0.991, directed correlation 0.988, directions 98.1 %. Not met: the grid's
-        // ambient correlation, 0.86 .. 0.96 over runs (goal 0.98): the reference's own runs agree on
-        // a quarter of the points only, and which quarter moves the figure (and the ambient total
-        // by a few percent).
+        // Every tolerance holds (measured at -fast): lightmaps 1.006, correlation 0.997, classes
+        // within 0.2 %, grid 1.002 / 0.999, correlations 0.999 / 0.998, directions 99.1 %. The
+        // reference's two runs agree on a quarter of its grid points only, and which quarter moves
+        // the ambient correlation: its limit keeps a margin below the 0.999 measured.
         MapCase c{"oacmpctf2", {"-fast"}, {}};
-        c.limits.gridAmbient = 0.05;
-        c.limits.gridAmbientCorrelation = 0.80;
+        c.limits.gridAmbientCorrelation = 0.95;
         out.push_back(c);
     }
     {
