@@ -56,15 +56,14 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
 
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
-    if (env.settings.solidLeavesBlock && env.tree && env.tree->segmentCrossesSolid(from, to)) return {};
-    if (env.deferredRays) {
-        if (std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear)) {
-            ray->mask = env.rayMask;
-            env.deferredRays->push_back(*ray);
-        }
-        return {1, 1, 1};
-    }
-    return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask);
+    if (!env.deferredRays) return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask);
+    std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear);
+    // Too short for an occluder to count; structural solid still blocks it (the scene tests the
+    // other rays for solid itself, after Embree, so that blocked rays skip the tree walk).
+    if (!ray) return env.scene->crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};
+    ray->mask = env.rayMask;
+    env.deferredRays->push_back(*ray);
+    return {1, 1, 1};
 }
 
 Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {

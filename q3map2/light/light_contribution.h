@@ -25,10 +25,6 @@ struct ContributionSettings {
     bool sunOnly = false;       // -sunonly
     float ignoreNear = 0;       // occluders closer than this to the sample are ignored
     bool forceFast = false;     // -fast (or -fastgrid for grid points): every light uses its envelope
-    // Point, spot and area light is also blocked where its segment crosses a leaf outside every
-    // cluster (BspTree::segmentCrossesSolid; q3map2 TraceLine's "passSolid"): structural brushes
-    // whose faces are caulked have no surface in the trace scene.
-    bool solidLeavesBlock = false;
 };
 
 // Where and how a luxel or vertex receives light.

@@ -264,9 +264,6 @@ LightingEnv surfaceLightingEnv(const LightContext& ctx) {
     env.settings.sunOnly = ctx.options.sunOnly;
     env.settings.forceFast = ctx.options.fast || ctx.options.faster;
     env.settings.ignoreNear = 1.5f;  // DEFAULT_INHIBIT_RADIUS around luxels and vertices
-    // q3map2's TraceLine walks the BSP first: a segment through a solid leaf is blocked, near the
-    // sample or not (the light behind a wall a vertex lies on does not reach it).
-    env.settings.solidLeavesBlock = true;
     return env;
 }
 
@@ -274,7 +271,7 @@ LightingEnv gridLightingEnv(const LightContext& ctx, Vec3 cellSize) {
     LightingEnv env = surfaceLightingEnv(ctx);
     // q3map2 TraceGrid: occluders closer to the point than half the largest cell side are ignored
     // (its inhibit radius), so that a point stands for its cell rather than its exact position;
-    // structural solid blocks whatever its distance (set for every sample).
+    // structural solid blocks whatever its distance (the scene's solid test, for every sample).
     env.settings.ignoreNear = 0.5f * maxComponent(cellSize);
     env.settings.forceFast = env.settings.forceFast || ctx.options.fastGrid;
     if (ctx.scene) env.rayMask = ctx.scene->receiverMask(1);  // grid points receive as the world does

@@ -270,7 +270,7 @@ ShadowRay TraceScene::skyRay(Vec3 from, Vec3 direction, int skyIndex, float igno
 
 Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear, uint32_t mask) const {
     std::optional<ShadowRay> ray = segmentRay(from, to, ignoreNear);
-    if (!ray) return Vec3{1, 1, 1};
+    if (!ray) return crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};  // too short for occluders
     ray->mask = mask;
     return traceOne(*ray);
 }
@@ -306,7 +306,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
         tfar = rh.ray.tfar;
-        if (solidBetween_ && solidBetween_(r.from, r.from + r.direction * tfar)) return {};
+        if (crossesSolid(r.from, r.from + r.direction * tfar)) return {};
     } else if (!skyRecords_.empty()) {
         RTCRay ray = makeRay(r, tfar);
         rtcOccluded1(embree_->skyScene, &plain, &ray);
@@ -320,6 +320,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     RTCRay ray = makeRay(r, tfar);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
+    if (!r.toSky && crossesSolid(r.from, r.from + r.direction * r.tfar)) return {};
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
 
@@ -383,7 +384,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
             if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escapes without meeting the sky
             if (wanted >= 0 && skyRecords_[rh.hit.geomID].skyIndex != wanted) continue;
             const ShadowRay& r = rays[rh.ray.id];
-            if (solidBetween_ && solidBetween_(r.from, r.from + r.direction * rh.ray.tfar)) continue;
+            if (crossesSolid(r.from, r.from + r.direction * rh.ray.tfar)) continue;
             occlusionBuffer[numOcclusion++] = rh.ray;  // tfar now ends at the sky surface
         }
     }
@@ -397,8 +398,14 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
-    for (size_t k = 0; k < numOcclusion; ++k)
-        if (occlusionBuffer[k].tfar >= 0) out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
+    for (size_t k = 0; k < numOcclusion; ++k) {
+        if (occlusionBuffer[k].tfar < 0) continue;
+        // Segments that Embree leaves open still stop at structural solid (sun rays were tested
+        // up to their sky above): the tree walk only for the rays that need it.
+        const ShadowRay& r = rays[occlusionBuffer[k].id];
+        if (!r.toSky && crossesSolid(r.from, r.from + r.direction * r.tfar)) continue;
+        out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
+    }
     if (hits.empty()) return;
     const std::vector<TranslucentHit> sorted = sortedHits(hits);
     for (size_t a = 0; a < sorted.size();) {

@@ -42,9 +42,10 @@ struct SceneSurface {
 
 struct TraceSceneOptions {
     bool patchShadows = false;  // -patchshadows: tessellated patches cast shadows
-    // Whether the segment from -> to enters structural solid (the BSP's solid leaves). A sun ray
-    // that does before it meets its sky is blocked, as q3map2's TraceLine stops at the first solid
-    // leaf: a ray grazing up a wall that a vertex lies on stays in the dark. Empty: no test.
+    // Whether the segment from -> to enters structural solid (the BSP's solid leaves). Any ray that
+    // does is blocked (a sun ray up to its sky), as q3map2's TraceLine stops at the first solid leaf
+    // whatever the inhibit radius: a ray grazing up a wall that a vertex lies on stays in the dark,
+    // and so does the light behind the wall. Empty: no test.
     std::function<bool(Vec3 from, Vec3 to)> solidBetween;
 };
 
@@ -84,6 +85,9 @@ public:
     // opaque surface met is a sky surface whose index matches `skyIndex` (-1 accepts any sky).
     Vec3 skyTransmission(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0,
                          uint32_t mask = kAllShadowGroups) const;
+
+    // TraceSceneOptions::solidBetween (false without one).
+    bool crossesSolid(Vec3 from, Vec3 to) const { return solidBetween_ && solidBetween_(from, to); }
 
     // Ray mask of a receiver in shadow group `receiveShadows`, with q3map2's rules: group 1 (the
     // world) is shadowed by casters of group 1 only; a group above 1 by group 1 and its own casters;

@@ -306,15 +306,27 @@ TEST(GridPoint, StructuralSolidBlocksWithinTheInhibitRadius) {
                {1, 0, {-1000, -1000, 60}, {1000, 1000, 1000}, 0, 0, 0, 0}};
     const BspTree tree(b);
     std::vector<SceneSurface> none;
-    TraceScene scene(none, {});
+    TraceScene plain(none, {});
     LightingEnv env;
-    env.scene = &scene;
+    env.scene = &plain;
     env.tree = &tree;
     env.settings.ignoreNear = 64;
     EXPECT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
-    env.settings.solidLeavesBlock = true;
+    TraceSceneOptions options;
+    options.solidBetween = [&tree](Vec3 from, Vec3 to) { return tree.segmentCrossesSolid(from, to); };
+    TraceScene withTree(none, options);
+    env.scene = &withTree;
     EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+    EXPECT_FALSE(lightToGridPoint(pointLight({0, 0, 62}, 300), {0, 0, 58}, -1, env));  // shorter than the radius
     EXPECT_TRUE(lightToGridPoint(pointLight({100, 0, 20}, 300), {0, 0, 0}, -1, env));  // beside the slab
+    std::vector<ShadowRay> deferred;
+    env.deferredRays = &deferred;  // batched: the scene applies the same test
+    ASSERT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
+    ASSERT_EQ(deferred.size(), 1u);
+    std::vector<Vec3> out(1);
+    withTree.traceBatch(deferred, out);
+    EXPECT_EQ(out[0], Vec3{});
+    env.deferredRays = nullptr;
     env.scene = nullptr;  // -notrace: nothing blocks
     EXPECT_TRUE(lightToGridPoint(pointLight({0, 0, 100}, 300), {0, 0, 0}, -1, env));
 }

@@ -139,7 +139,7 @@ TEST(TraceScene, OpaqueRoofBlocksSun) {
 TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {
     // A sky ceiling and no caster below it; the solid test calls x > 100 solid. A sun ray that
     // stays out of it reaches the sky; one that starts in it or crosses into it before the sky does
-    // not, singly and in a batch. Segment rays to point lights are the caller's to test.
+    // not, singly and in a batch; segments to point lights likewise, however short.
     LightingShader sky;
     sky.sky = true;
     std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0)};
@@ -150,14 +150,29 @@ TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {
     EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 0), (Vec3{1, 1, 1}));
     EXPECT_EQ(scene.skyTransmission({150, 0, 0}, up, 0), (Vec3{0, 0, 0}));
     EXPECT_EQ(scene.skyTransmission({0, 0, 0}, slanted, 0), (Vec3{0, 0, 0}));  // reaches x = 500 first
-    EXPECT_EQ(scene.transmission({150, 0, 0}, {150, 0, 400}), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({150, 0, 0}, {150, 0, 400}), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 0, 400}), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({99, 0, 0}, {101, 0, 0}, 8), (Vec3{0, 0, 0}));  // within ignoreNear
     std::vector<ShadowRay> rays;
-    for (int i = 0; i < 90; ++i)
-        rays.push_back(TraceScene::skyRay({float(i % 3) * 75.0f, float(i), 0}, i % 2 ? up : slanted, 0));
+    for (int i = 0; i < 90; ++i) {
+        const Vec3 from{float(i % 3) * 75.0f, float(i), 0};
+        if (i % 5 == 0)
+            rays.push_back(*TraceScene::segmentRay(from, from + Vec3{float(i % 4) * 20.0f, 0, 300}));
+        else
+            rays.push_back(TraceScene::skyRay(from, i % 2 ? up : slanted, 0));
+    }
     std::vector<Vec3> out(rays.size());
     scene.traceBatch(rays, out);
-    for (size_t i = 0; i < rays.size(); ++i)
-        EXPECT_EQ(out[i], scene.skyTransmission(rays[i].from, rays[i].direction, 0)) << "ray " << i;
+    int blocked = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const ShadowRay& r = rays[i];
+        const Vec3 single = r.toSky ? scene.skyTransmission(r.from, r.direction, 0)
+                                    : scene.transmission(r.from, r.from + r.direction * (r.tfar + 0.01f));
+        EXPECT_EQ(out[i], single) << "ray " << i;
+        blocked += out[i] == Vec3{};
+    }
+    EXPECT_GT(blocked, 0);
+    EXPECT_LT(blocked, int(rays.size()));
 }
 
 TEST(TraceScene, AlphaShadowAndLightFilterAttenuate) {
