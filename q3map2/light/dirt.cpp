@@ -38,7 +38,8 @@ uint64_t dirtSeed(Vec3 origin) {
     return mix.next();
 }
 
-float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed) {
+float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
+                    float ignoreNear) {
     Vec3 right, up;
     tangentFrame(normal, right, up);
     const float depth = settings.depth;
@@ -59,7 +60,7 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
     }
     directions.push_back(normal);
     std::vector<RayHit> hits(directions.size());
-    scene.nearestMany(origin, directions, 0.0f, depth, hits);
+    scene.nearestMany(origin, directions, ignoreNear, depth, hits);
     // Only opaque, non-sky surfaces within the depth darken.
     float gathered = 0;
     for (const RayHit& hit : hits)

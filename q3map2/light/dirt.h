@@ -31,8 +31,9 @@ DirtSettings dirtSettingsFromOptions(const LightOptions& options);
 const std::vector<Vec3>& dirtConeDirections();
 
 // Dirt factor (0 black .. 1 untouched) of one sample. `seed` drives the random directions of mode 1
-// (the same seed always gives the same directions).
-float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed);
+// (the same seed always gives the same directions); surfaces closer than `ignoreNear` do not count.
+float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
+                    float ignoreNear = 0);
 
 // Seed of a sample's random directions, from its position (independent of thread scheduling).
 uint64_t dirtSeed(Vec3 origin);

@@ -189,7 +189,8 @@ bsp::Bsp cornerBsp(const std::string& floorShader) {
 
 const char* kShaders =
     "textures/test/sky\n{\n\tsurfaceparm sky\n\tsurfaceparm noimpact\n}\n"
-    "textures/test/clean\n{\n\tq3map_noDirty\n}\n";
+    "textures/test/clean\n{\n\tq3map_noDirty\n}\n"
+    "textures/test/vertex\n{\n\tsurfaceparm nolightmap\n}\n";
 
 TEST(DirtStage, DarkensCornerButNotOpenFloorNorNextToSky) {
     const bsp::Bsp b = cornerBsp("textures/test/floor");
@@ -224,6 +225,48 @@ TEST(DirtStage, DarkensCornerButNotOpenFloorNorNextToSky) {
     const bsp::Bsp debug = bsp::readBsp(path);
     EXPECT_EQ(quality::texel(debug, 0, open[0], open[1])[0], 255);
     EXPECT_LT(quality::texel(debug, 0, corner[0], corner[1])[0], 220);
+}
+
+TEST(Dirt, OccludersWithinTheIgnoreRadiusDoNotCount) {
+    HitScene scene(cornerScene(), {});
+    const float all = dirtForSample({1, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0);
+    const float far = dirtForSample({1, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0, 1.5f);
+    EXPECT_LT(all, far);
+    EXPECT_LT(far, 1.0f);  // rays that meet the wall further away still darken
+    EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0, 1.5f),
+              dirtForSample({16, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0));
+}
+
+TEST(DirtStage, VertexLitSurfaceIsDarkenedNearTheWall) {
+    // Vertex-lit tiles on the floor: one with vertexes 8 and 24 units from the wall, one in the open.
+    // With -dirty the first loses light at every vertex, the second keeps the ambient.
+    bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/sky", "textures/test/vertex"});
+    quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);
+    quality::addQuad(b, {0, 0, 0}, {0, 0, 256}, {0, 512, 0}, 1);
+    quality::addQuad(b, {512, 0, 0}, {0, 512, 0}, {0, 0, 256}, 2);
+    for (float x : {8.0f, 248.0f}) {
+        quality::addQuad(b, {x, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 3);
+        b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;  // as -bsp leaves it
+    }
+    quality::finish(b, {{"_ambient", "100"}});
+    const auto path = quality::writeScene(b, "vertexdirt", kShaders);
+    ASSERT_EQ(quality::runLight(path, {}), 0);
+    const bsp::Bsp plain = bsp::readBsp(path);
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, {"-dirty"}), 0);
+    const bsp::Bsp dirty = bsp::readBsp(path);
+    for (size_t tile : {3u, 4u}) {
+        const bsp::Surface& s = dirty.surfaces[tile];
+        ASSERT_LT(s.lightmapNum, 0);  // vertex lit
+        for (int v = 0; v < s.numVerts; ++v) {
+            const size_t i = static_cast<size_t>(s.firstVert + v);
+            EXPECT_EQ(plain.drawVerts[i].color[0], 100);
+            if (tile == 3)
+                EXPECT_LT(dirty.drawVerts[i].color[0], 90) << "by the wall, vertex " << v;
+            else
+                EXPECT_EQ(dirty.drawVerts[i].color[0], 100) << "in the open, vertex " << v;
+        }
+    }
 }
 
 TEST(DirtStage, NoDirtyShaderKeepsItsLight) {
