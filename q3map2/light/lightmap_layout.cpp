@@ -85,11 +85,6 @@ CurvedMesh curvedMesh(const bsp::Bsp& bsp, const bsp::Surface& s, std::span<cons
     return mesh;
 }
 
-std::array<std::array<float, 2>, 4> subsampleOffsets(int level) {
-    const float b = 0.25f / float(1 << std::clamp(level, 0, 20));
-    return {{{-b, -b}, {b, -b}, {-b, b}, {b, b}}};
-}
-
 void applyLightmapOrigin(bsp::Surface& surface, const RawLightmap& lightmap) {
     if (lightmap.axisNum < 0) return;  // curved patches keep what -bsp wrote
     lightmap.origin.toArray(surface.lightmapOrigin);
@@ -99,126 +94,6 @@ namespace {
 
 using St = std::array<float, 2>;
 constexpr int kMaxGrownSampleSize = 1 << 20;  // beyond the world size: give up growing
-
-struct Nearest {
-    float distance = 1e30f;
-    int triangle = -1;
-    std::array<float, 3> bary{};
-};
-
-// Barycentric coordinates of p in triangle (a, b, c); false for a degenerate triangle.
-bool barycentric(const St& p, const St& a, const St& b, const St& c, std::array<float, 3>& out) {
-    const float d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
-    if (std::fabs(d) < 1e-12f) return false;
-    const float u = ((b[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (b[1] - p[1])) / d;
-    const float v = ((c[0] - p[0]) * (a[1] - p[1]) - (a[0] - p[0]) * (c[1] - p[1])) / d;
-    out = {u, v, 1.0f - u - v};
-    return true;
-}
-
-// Nearest point of a triangle to p in lightmap space, as barycentric coordinates, and its distance.
-bool nearestOnTriangle(const St& p, const LightmapTriangle& t, std::array<float, 3>& bary, float& dist) {
-    if (!barycentric(p, t.st[0], t.st[1], t.st[2], bary)) return false;
-    if (bary[0] >= 0.0f && bary[1] >= 0.0f && bary[2] >= 0.0f) {
-        dist = 0.0f;
-        return true;
-    }
-    dist = 1e30f;
-    for (int e = 0; e < 3; ++e) {
-        const St& a = t.st[e];
-        const St& b = t.st[(e + 1) % 3];
-        const float dx = b[0] - a[0], dy = b[1] - a[1];
-        const float len2 = dx * dx + dy * dy;
-        float f = len2 > 0.0f ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2 : 0.0f;
-        f = std::clamp(f, 0.0f, 1.0f);
-        const float qx = a[0] + f * dx - p[0], qy = a[1] + f * dy - p[1];
-        const float d = std::sqrt(qx * qx + qy * qy);
-        if (d < dist) {
-            dist = d;
-            bary = {0.0f, 0.0f, 0.0f};
-            bary[e] = 1.0f - f;
-            bary[(e + 1) % 3] = f;
-        }
-    }
-    return true;
-}
-
-// Triangle index cells cover super luxels -1..width and -1..height.
-int cellOf(const RawLightmap& lm, float x, float y) {
-    const int cw = lm.superWidth() + 2, ch = lm.superHeight() + 2;
-    const int cx = int(std::floor(x)) + 1, cy = int(std::floor(y)) + 1;
-    if (cx < 0 || cy < 0 || cx >= cw || cy >= ch) return -1;
-    return cy * cw + cx;
-}
-
-void indexTriangles(RawLightmap& lm) {
-    const int cw = lm.superWidth() + 2, ch = lm.superHeight() + 2;
-    std::vector<std::vector<uint32_t>> cells(size_t(cw) * ch);
-    for (size_t i = 0; i < lm.triangles.size(); ++i) {
-        float minX = 1e30f, maxX = -1e30f, minY = 1e30f, maxY = -1e30f;
-        for (const St& p : lm.triangles[i].st) {
-            minX = std::min(minX, p[0]);
-            maxX = std::max(maxX, p[0]);
-            minY = std::min(minY, p[1]);
-            maxY = std::max(maxY, p[1]);
-        }
-        // Every point within one luxel of the triangle falls in these cells.
-        const int x0 = std::max(0, int(std::floor(minX - 1.0f)) + 1), x1 = std::min(cw - 1, int(std::floor(maxX + 1.0f)) + 1);
-        const int y0 = std::max(0, int(std::floor(minY - 1.0f)) + 1), y1 = std::min(ch - 1, int(std::floor(maxY + 1.0f)) + 1);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) cells[size_t(y) * cw + x].push_back(uint32_t(i));
-    }
-    lm.cellFirst.assign(cells.size() + 1, 0);
-    lm.cellTriangles.clear();
-    for (size_t c = 0; c < cells.size(); ++c) {
-        lm.cellFirst[c] = uint32_t(lm.cellTriangles.size());
-        lm.cellTriangles.insert(lm.cellTriangles.end(), cells[c].begin(), cells[c].end());
-    }
-    lm.cellFirst[cells.size()] = uint32_t(lm.cellTriangles.size());
-}
-
-Nearest nearestTriangle(const RawLightmap& lm, const St& p, float maxDistance) {
-    Nearest best;
-    const int cell = cellOf(lm, p[0], p[1]);
-    if (cell < 0 || size_t(cell) + 1 >= lm.cellFirst.size()) return best;
-    // Lowest triangle index wins ties, whatever the cell order.
-    for (uint32_t k = lm.cellFirst[size_t(cell)]; k < lm.cellFirst[size_t(cell) + 1]; ++k) {
-        const uint32_t i = lm.cellTriangles[k];
-        std::array<float, 3> bary;
-        float dist;
-        if (!nearestOnTriangle(p, lm.triangles[i], bary, dist)) continue;
-        if (dist <= maxDistance && (dist < best.distance || (dist == best.distance && int(i) < best.triangle)))
-            best = {dist, int(i), bary};
-    }
-    return best;
-}
-
-// Surface point and normal at super-luxel coordinates p, given the nearest triangle.
-Luxel luxelAt(const RawLightmap& lm, const St& p, const Nearest& n) {
-    const LightmapTriangle& t = lm.triangles[size_t(n.triangle)];
-    Vec3 normal = normalize(t.normal[0] * n.bary[0] + t.normal[1] * n.bary[1] + t.normal[2] * n.bary[2]);
-    Vec3 origin;
-    if (lm.planar) {
-        // Exactly on the plane, also for luxels hanging over the surface edge.
-        const float s = p[0] / float(lm.superSample) - 0.5f, tt = p[1] / float(lm.superSample) - 0.5f;
-        origin = lm.origin + lm.vecs[0] * s + lm.vecs[1] * tt;
-        if (dot(normal, normal) == 0.0f) normal = lm.planeNormal;
-    } else {
-        origin = t.position[0] * n.bary[0] + t.position[1] * n.bary[1] + t.position[2] * n.bary[2];
-    }
-    Vec3 face = normalize(cross(t.position[2] - t.position[0], t.position[1] - t.position[0]));
-    if (dot(normal, normal) == 0.0f) normal = face;
-    if (dot(face, normal) < 0.0f) face = -face;
-    if (dot(face, face) == 0.0f) face = normal;
-    const Vec3 surfacePoint = t.position[0] * n.bary[0] + t.position[1] * n.bary[1] + t.position[2] * n.bary[2];
-    const Vec3 plane = lm.planar ? lm.planeNormal : face;
-    Vec3 pushed = origin;
-    if (lm.axisNum >= 0)
-        pushed[lm.axisNum] += plane[lm.axisNum] < 0.0f ? -lm.sampleOffset : lm.sampleOffset;
-    else
-        pushed += face * lm.sampleOffset;
-    return {pushed, normal, true, surfacePoint, normal, plane};
-}
 
 Vec3 vertexNormal(const SurfaceGeometry& g, size_t i) {
     return i < g.normals.size() ? g.normals[i] : Vec3{};
@@ -393,7 +268,6 @@ std::optional<RawLightmap> layoutProjected(std::span<const SurfaceGeometry> grou
         addSurfaceTriangles(lm, member, project);
         mapping.push_back(projectedMappingSurface(member, project));
     }
-    indexTriangles(lm);
     mapSurfacesOntoLuxels(lm, mapping);
     return lm;
 }
@@ -484,7 +358,6 @@ std::optional<RawLightmap> layoutCurvedPatch(const SurfaceGeometry& g, const Sur
             lm.triangles.push_back(a);
             lm.triangles.push_back(b);
         }
-    indexTriangles(lm);
     mapSurfacesOntoLuxels(lm, std::span(&mapping, 1));
     return lm;
 }
@@ -535,11 +408,5 @@ std::optional<RawLightmap> layoutSurfaceGroup(std::span<const SurfaceGeometry> g
     return layoutProjected(prepared, axis, params, options, pageW, pageH, log);
 }
 
-std::optional<Luxel> sampleRawLightmap(const RawLightmap& lm, float x, float y) {
-    const St p{x, y};
-    const Nearest n = nearestTriangle(lm, p, 1.0f);
-    if (n.triangle < 0) return std::nullopt;
-    return luxelAt(lm, p, n);
-}
 
 }  // namespace q3::light

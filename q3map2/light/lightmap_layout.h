@@ -128,9 +128,6 @@ struct RawLightmap {
     std::vector<LightmapTriangle> triangles;  // the surfaces in super-luxel space
     std::vector<Luxel> luxels;                // superWidth() * superHeight(), row-major
     float sampleOffset = 1.0f;
-    // Triangles near each super luxel (grid padded by one luxel on every side, CSR layout), so that
-    // sampleRawLightmap does not scan every triangle. Built by the layout functions.
-    std::vector<uint32_t> cellFirst, cellTriangles;
 
     int superWidth() const { return width * superSample; }
     int superHeight() const { return height * superSample; }
@@ -153,15 +150,6 @@ std::optional<RawLightmap> layoutSurfaceLightmap(const SurfaceGeometry& geometry
 // projection cover them all, the first surface defines the plane. Curved patches cannot share.
 std::optional<RawLightmap> layoutSurfaceGroup(std::span<const SurfaceGeometry> group, const SurfaceLightmapParams& params,
                                               const LayoutOptions& options, Log* log = nullptr);
-
-// World position and normal at fractional super-luxel coordinates (x, y) (luxel centres at +0.5),
-// pushed off by the sample offset; nullopt when no triangle lies within one luxel of the point.
-// Used for sub-samples.
-std::optional<Luxel> sampleRawLightmap(const RawLightmap& lightmap, float x, float y);
-
-// Offsets (in super-luxel units) of the four sub-samples of q3map2's adaptive -samples at recursion
-// level `level` (0 = first): (+-b, +-b) with b = 0.25 / 2^level, in the order (-,-), (+,-), (-,+), (+,+).
-std::array<std::array<float, 2>, 4> subsampleOffsets(int level);
 
 // Writes the lightmap origin of a laid-out surface into the BSP surface as q3map2 does
 // (lightmapOrigin only; lightmapVecs keep what -bsp wrote, patches use them as LOD bounds).

@@ -180,29 +180,57 @@ struct LuxelSampler {
         return c ? c->color : Vec3{};
     }
 
-    // Mean of four sub-samples around (fx, fy), recursing where they disagree.
-    Vec3 subsample(const Light& light, float fx, float fy, int level, int maxLevel, Vec3 centre) const {
-        const auto offsets = subsampleOffsets(level);
-        Vec3 values[4];
-        bool lit[4];
+    // q3map2 SubmapRawLuxel: the step from luxel (x, y) to its neighbour on the side of `bias`
+    // along one axis (the luxel itself where that neighbour has no sample point).
+    static Vec3 luxelStep(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int x, int y, int dx,
+                          int dy, float bias) {
+        const int pos = dx ? x : y, size = dx ? w : h;
+        auto at = [&](int k) -> Vec3 {
+            const int px = dx ? k : x, py = dy ? k : y;
+            const std::optional<SamplePoint>& p = points[size_t(py) * size_t(w) + size_t(px)];
+            return p ? p->origin : points[size_t(y) * size_t(w) + size_t(x)]->origin;
+        };
+        if ((pos < size - 1 && bias >= 0) || (pos == 0 && bias <= 0)) return pos < size - 1 ? at(pos + 1) - at(pos) : Vec3{};
+        return at(pos) - at(pos - 1);
+    }
+
+    // q3map2 SubsampleRawLuxel_r: four sub-samples at +-bias of a luxel step around `origin` (first
+    // the luxel's own sample point), each kept only out of solid near the surface; the luxel having
+    // taken `samples` of at most `maxSamples`, where they disagree (some lit, some not, and more than
+    // 4 in some channel) each recurses around itself at half the bias. The result is the mean of
+    // `centre` and the kept sub-samples.
+    Vec3 subsample(const Light& light, const std::vector<std::optional<SamplePoint>>& points, int w, int h, int x, int y,
+                   Vec3 origin, float bias, int samples, int maxSamples, Vec3 centre) const {
+        if (samples >= maxSamples) return centre;
+        constexpr float kDirs[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+        const SamplePoint& luxel = *points[size_t(y) * size_t(w) + size_t(x)];
+        Vec3 values[4], origins[4];
+        bool mapped[4] = {false, false, false, false};
+        int numMapped = 0, lighted = 0;
+        Vec3 total;
         for (int k = 0; k < 4; ++k) {
-            const float sx = fx + offsets[static_cast<size_t>(k)][0];
-            const float sy = fy + offsets[static_cast<size_t>(k)][1];
-            values[k] = centre;
-            if (std::optional<Luxel> lx = sampleRawLightmap(raw, sx, sy))
-                if (std::optional<SamplePoint> p = samplePoint(*lx))
-                    values[k] = lightAt(light, *p);
-            lit[k] = maxComponent(values[k]) > 0;
+            const float bx = bias * kDirs[k][0], by = bias * kDirs[k][1];
+            origins[k] = origin + luxelStep(points, w, h, x, y, 1, 0, bx) * bx + luxelStep(points, w, h, x, y, 0, 1, by) * by;
+            const int cluster =
+                ctx.tree && !ctx.bsp.nodes.empty()
+                    ? clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(origins[k], 2 * kLuxelEpsilon), clusters)
+                    : 0;
+            if (cluster < 0) continue;
+            values[k] = lightAt(light, SamplePoint{origins[k], luxel.normal, ctx.tree ? cluster : -1, twoSided});
+            mapped[k] = true;
+            ++numMapped;
+            total += values[k];
+            lighted += values[k].x + values[k].y + values[k].z > 0;
         }
-        const bool mixed = !(lit[0] == lit[1] && lit[1] == lit[2] && lit[2] == lit[3]);
-        Vec3 sum;
-        for (int k = 0; k < 4; ++k) {
-            if (mixed && level + 1 < maxLevel)
-                values[k] = subsample(light, fx + offsets[static_cast<size_t>(k)][0],
-                                      fy + offsets[static_cast<size_t>(k)][1], level + 1, maxLevel, values[k]);
-            sum += values[k];
-        }
-        return sum * 0.25f;
+        if (samples + 1 < maxSamples && maxComponent(total) > 4 && lighted != 0 && lighted != numMapped)
+            for (int k = 0; k < 4; ++k)
+                if (mapped[k])
+                    values[k] = subsample(light, points, w, h, x, y, origins[k], bias * 0.5f, samples + 1, maxSamples,
+                                          values[k]);
+        Vec3 sum = centre;
+        for (int k = 0; k < 4; ++k)
+            if (mapped[k]) sum += values[k];
+        return sum / float(1 + numMapped);
     }
 };
 
@@ -298,25 +326,33 @@ std::vector<Vec3> downsampleMean(const std::vector<Vec3>& super, int superWidth,
     return out;
 }
 
-// Adaptive sub-sampling where the light's lit/unlit state changes between neighbouring luxels.
+// q3map2's adaptive sub-sampling (-samples N): a walk over every 2x2 stamp of the light's luxels,
+// in rows; a stamp with lit and unlit luxels and more than 4 in some channel sub-samples each of its
+// luxels that may still take a sample, in place, so later stamps see the refined values.
 void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vector<std::optional<SamplePoint>>& points,
-                 int w, int h, int maxLevel, std::vector<Vec3>& color) {
-    std::vector<Vec3> refined = color;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * size_t(w) + size_t(x);
-            if (!points[i]) continue;
-            const bool lit = maxComponent(color[i]) > 0;
-            bool edge = false;
-            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-                const int nx = x + dx, ny = y + dy;
-                if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                const size_t j = size_t(ny) * size_t(w) + size_t(nx);
-                if (points[j] && (maxComponent(color[j]) > 0) != lit) edge = true;
+                 int w, int h, int maxSamples, std::vector<Vec3>& color) {
+    std::vector<int> samples(points.size(), 1);
+    for (int y = 0; y + 1 < h; ++y)
+        for (int x = 0; x + 1 < w; ++x) {
+            const int sx[4] = {x, x + 1, x, x + 1}, sy[4] = {y, y, y + 1, y + 1};
+            int mapped = 0, lighted = 0;
+            Vec3 total;
+            for (int t = 0; t < 4; ++t) {
+                const size_t i = size_t(sy[t]) * size_t(w) + size_t(sx[t]);
+                if (!points[i]) continue;
+                ++mapped;
+                total += color[i];
+                lighted += color[i].x + color[i].y + color[i].z > 0;
             }
-            if (edge) refined[i] = sampler.subsample(light, x + 0.5f, y + 0.5f, 0, maxLevel, color[i]);
+            if (maxComponent(total) <= 4 || lighted == 0 || lighted == mapped) continue;
+            for (int t = 0; t < 4; ++t) {
+                const size_t i = size_t(sy[t]) * size_t(w) + size_t(sx[t]);
+                if (!points[i] || samples[i] >= maxSamples) continue;
+                color[i] = sampler.subsample(light, points, w, h, sx[t], sy[t], points[i]->origin, 0.25f, samples[i],
+                                             maxSamples, color[i]);
+                ++samples[i];
+            }
         }
-    color = std::move(refined);
 }
 
 // The rings of unmapped luxels around the mapped ones (LuxelSampler::ringPoint), grown
@@ -506,7 +542,8 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
         bool any = false;
         tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
         if (!any && maxLevel == 0) continue;
-        if (maxLevel > 0) refineEdges(sampler, lt, points, w, h, maxLevel, single.color);
+        // q3map2 skips sub-sampling where the light is filtered (it would be smoothed away).
+        if (maxLevel > 0 && radius == 0) refineEdges(sampler, lt, points, w, h, o.lightSamples, single.color);
         const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius) : single;
         for (size_t i = 0; i < points.size(); ++i)
             if (points[i]) {

@@ -205,20 +205,6 @@ TEST(LightmapLayout, SuperSampling) {
     EXPECT_EQ(layoutSurfaceLightmap(floorQuad(), {}, o)->superSample, 8);
 }
 
-TEST(LightmapLayout, SubSamples) {
-    const auto lm = layoutSurfaceLightmap(floorQuad(), {}, {});
-    const auto s = sampleRawLightmap(*lm, 2.25f, 1.75f);
-    ASSERT_TRUE(s.has_value());
-    EXPECT_NEAR(s->origin.x, 28.0f, 1e-4f);  // (2.25 - 0.5) * 16
-    EXPECT_NEAR(s->origin.y, 20.0f, 1e-4f);
-    EXPECT_NEAR(s->origin.z, 1.0f, 1e-6f);
-    EXPECT_FALSE(sampleRawLightmap(*lm, 7.9f, 4.9f).has_value());  // more than a luxel away
-    const auto level0 = subsampleOffsets(0);
-    EXPECT_EQ(level0[0], (std::array<float, 2>{-0.25f, -0.25f}));
-    EXPECT_EQ(level0[3], (std::array<float, 2>{0.25f, 0.25f}));
-    EXPECT_EQ(subsampleOffsets(1)[1], (std::array<float, 2>{0.125f, -0.125f}));
-}
-
 // 3x3 patch arching over x: columns at x = 0, 64, 128 with control heights 0, 64, 0.
 SurfaceGeometry archPatch() {
     SurfaceGeometry g;
