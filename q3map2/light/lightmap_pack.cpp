@@ -272,6 +272,9 @@ void applyPackedLightmaps(bsp::Bsp& bsp, std::span<const LightmapBlock> blocks, 
     if (packed.placements.size() != blocks.size())
         throw CompileError("lightmap packing does not match its " + std::to_string(blocks.size()) + " blocks");
     const float inv = 1.0f / float(packed.pageSize);
+    // Surfaces without a lightmap are lit by vertex, whatever an earlier light run wrote
+    // (q3map2 StoreSurfaceLightmaps).
+    for (bsp::Surface& surface : bsp.surfaces) surface.lightmapNum = bsp::kLightmapByVertex;
     for (size_t i = 0; i < blocks.size(); ++i) {
         const LightmapBlock& b = blocks[i];
         const BlockPlacement& p = packed.placements[i];

@@ -184,15 +184,17 @@ TEST(LightmapPack, BadInput) {
     EXPECT_THROW(packLightmaps(std::vector<LightmapBlock>{broken}, slow(8)), CompileError);
 }
 
+// Three lightmapped surfaces and a fourth that an earlier run left on page 5 and that gets no block.
 bsp::Bsp twoSurfaceBsp() {
     bsp::Bsp b;
-    b.surfaces.resize(3);
-    for (int s = 0; s < 3; ++s) {
+    b.surfaces.resize(4);
+    for (int s = 0; s < 4; ++s) {
         b.surfaces[size_t(s)].firstVert = s * 3;
         b.surfaces[size_t(s)].numVerts = 3;
         b.surfaces[size_t(s)].lightmapNum = -1;
     }
-    b.drawVerts.resize(9);
+    b.surfaces[3].lightmapNum = 5;
+    b.drawVerts.resize(12);
     return b;
 }
 
@@ -217,6 +219,7 @@ TEST(LightmapPack, ApplyRewritesSurfacesAndVertices) {
     EXPECT_FLOAT_EQ(b.drawVerts[4].lightmap[0], (float(p.placements[1].x) + 0.5f) / 8.0f);
     EXPECT_FLOAT_EQ(b.drawVerts[5].lightmap[1], (float(p.placements[1].y) + 0.5f) / 8.0f);
     EXPECT_EQ(b.lightmaps.size(), 8u * 8u * 3u);
+    EXPECT_EQ(b.surfaces[3].lightmapNum, bsp::kLightmapByVertex);  // no block: lit by vertex
 
     // A page size other than the game's without -external: custom shaders needed, no lump 14.
     PackOptions custom = slow(8);
