@@ -105,6 +105,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
     phase("lights");
     createLights(ctx, log);
+    ctx.luxelPasses = prepareLuxelPasses(ctx, log);
     if (!options.noLightmaps) {
         phase("lightmaps");
         lightLightmaps(ctx, log);

@@ -16,6 +16,7 @@
 #include "light_options.h"
 #include "light_shaders.h"
 #include "lights.h"
+#include "luxel_passes.h"
 #include "common_options.h"
 #include "log.h"
 #include "shader_info.h"
@@ -66,6 +67,9 @@ struct LightContext {
     std::unique_ptr<TraceScene> scene;
     std::vector<Light> lights;
     std::vector<Light> bounceLights;     // -bounce: the emitters of every radiosity pass
+    // Floodlight and dirt (luxel_passes.h), prepared once by the stage for lightmaps and vertexes;
+    // null when neither is in use.
+    std::unique_ptr<LuxelPasses> luxelPasses;
 
     // Settings derived from the options.
     LightScales scales;

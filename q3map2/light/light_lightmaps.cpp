@@ -169,10 +169,10 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     const LightOptions& o = ctx.options;
     const std::vector<int> surfaces = lightmappedSurfaces(ctx);
     const LayoutOptions layoutOptions = layoutOptionsFor(ctx, log);
-    const std::unique_ptr<LuxelPasses> passes = prepareLuxelPasses(ctx, log);
+    const LuxelPasses* passes = ctx.luxelPasses.get();
     const bool deluxe = deluxeSettings(ctx).has_value();
 
-    std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes.get(),
+    std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes,
                                                SurfacePass{ctx.lights, true, deluxe}, log);
     std::vector<SurfaceLight> total = o.bounceOnly && o.bounce > 0 ? emptyLike(pass) : pass;
     if (o.bounce > 0) {

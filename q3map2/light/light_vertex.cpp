@@ -9,10 +9,8 @@
 #include <span>
 
 #include "dirt.h"
-#include "hit_scene.h"
 #include "light_context.h"
 #include "light_text.h"
-#include "shader_info.h"
 #include "surface_lighting.h"
 
 namespace q3::light {
@@ -27,28 +25,6 @@ constexpr int kNudgeSteps[4] = {0, 1, -1, 2};
 // Whether any channel is above the ambient light (q3map2 keeps searching until a vertex is).
 bool brighterThan(Vec3 c, Vec3 ambient) { return c.x > ambient.x || c.y > ambient.y || c.z > ambient.z; }
 
-// -dirty on vertex-lit surfaces: q3map2 darkens each traced vertex by the dirt at the position it
-// was lit from (no smoothing between vertexes, unlike luxels).
-struct VertexDirt {
-    std::unique_ptr<HitScene> scene;
-    DirtSettings settings;
-    std::vector<uint8_t> noDirty;  // per BSP shader: q3map_noDirty
-};
-
-std::optional<VertexDirt> vertexDirt(const LightContext& ctx) {
-    if (!ctx.options.dirty) return std::nullopt;
-    VertexDirt d;
-    TraceSceneOptions options;
-    options.patchShadows = ctx.options.patchShadows;
-    d.scene = std::make_unique<HitScene>(ctx.surfaces, options);
-    d.settings = dirtSettingsFromOptions(ctx.options);
-    d.noDirty.assign(ctx.bsp.shaders.size(), 0);
-    if (ctx.shaderTable)
-        for (size_t i = 0; i < ctx.bsp.shaders.size(); ++i)
-            d.noDirty[i] = ctx.shaderTable->find(ctx.bsp.shaders[i].name).noDirty ? 1 : 0;
-    return d;
-}
-
 struct VertexTracer {
     const LightContext& ctx;
     const LightingEnv& env;
@@ -56,7 +32,9 @@ struct VertexTracer {
     std::span<const Light* const> lights;  // the lights whose envelope reaches the surface's vertexes
     bool twoSided = false;
     bool forceSunlight = false;
-    const VertexDirt* dirt = nullptr;  // null: no dirt on this surface
+    // -dirty: q3map2 darkens each traced vertex by the dirt at the position it was lit from (no
+    // smoothing between vertexes, unlike luxels). Null: no dirt on this surface.
+    const LuxelPasses* dirt = nullptr;
 
     int freeCluster(Vec3 point) const {
         if (!ctx.tree || ctx.bsp.nodes.empty()) return 0;
@@ -76,7 +54,7 @@ struct VertexTracer {
             if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) break;
         }
         if (dirt)
-            color *= dirtForSample(origin, normal, *dirt->scene, dirt->settings, dirtSeed(origin), env.settings.ignoreNear);
+            color *= dirtForSample(origin, normal, *dirt->scene, dirt->dirt, dirtSeed(origin), env.settings.ignoreNear);
         return color;
     }
 
@@ -119,7 +97,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
         ctx.vertexFromLightmap.assign(bsp.drawVerts.size(), 0);
     }
     const LightingEnv env = surfaceLightingEnv(ctx);
-    const std::optional<VertexDirt> dirt = vertexDirt(ctx);
+    const LuxelPasses* passes = ctx.luxelPasses && ctx.luxelPasses->dirty ? ctx.luxelPasses.get() : nullptr;
     std::vector<uint64_t> counts(bsp.surfaces.size(), 0);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
@@ -142,9 +120,9 @@ void lightVertexes(LightContext& ctx, Log& log) {
             for (std::span<const Light> lights : {std::span<const Light>(ctx.lights), std::span<const Light>(ctx.bounceLights)})
                 for (const Light& light : lights)
                     if (lightReachesBounds(light, reach, env.settings.forceFast)) reaching.push_back(&light);
-            const bool dirty = dirt && !dirt->noDirty[static_cast<size_t>(s.shaderNum)];
+            const bool dirty = passes && !passes->noDirty[static_cast<size_t>(s.shaderNum)];
             const VertexTracer tracer{ctx,           surfaceEnv, clusters, reaching, shader.twoSided, shader.forceSunlight,
-                                      dirty ? &*dirt : nullptr};
+                                      dirty ? passes : nullptr};
             // Traced vertexes first; those whose every position was in solid take the mean of the
             // lit ones (the ambient light when none is).
             std::vector<std::optional<Vec3>> traced(size_t(std::max(0, s.numVerts)));

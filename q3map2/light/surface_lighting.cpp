@@ -88,8 +88,8 @@ struct LuxelSampler {
 
     // q3map2 ClusterForPointExtFilter: the cluster of a point out of solid that is one of the
     // surface's clusters or sees one of them; -1 otherwise.
-    int freeCluster(Vec3 point) const {
-        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, kLuxelEpsilon), clusters);
+    int freeCluster(Vec3 point, float epsilon = kLuxelEpsilon) const {
+        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, epsilon), clusters);
     }
 
     // The luxel's sample point; in solid, the nudges in q3map2's order, then the surface point under
@@ -180,17 +180,18 @@ struct LuxelSampler {
         return c ? c->color : Vec3{};
     }
 
-    // q3map2 SubmapRawLuxel: the step from luxel (x, y) to its neighbour on the side of `bias`
-    // along one axis (the luxel itself where that neighbour has no sample point).
-    static Vec3 luxelStep(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int x, int y, int dx,
-                          int dy, float bias) {
-        const int pos = dx ? x : y, size = dx ? w : h;
+    // q3map2 SubmapRawLuxel: the step from luxel (x, y) to its neighbour along one axis, towards
+    // the next luxel (`forward`) or the previous one, taken the other way at the lightmap's edges
+    // (the luxel itself stands in for a neighbour without a sample point).
+    static Vec3 luxelStep(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int x, int y, bool alongX,
+                          bool forward) {
+        const int pos = alongX ? x : y, size = alongX ? w : h;
         auto at = [&](int k) -> Vec3 {
-            const int px = dx ? k : x, py = dy ? k : y;
-            const std::optional<SamplePoint>& p = points[size_t(py) * size_t(w) + size_t(px)];
+            const std::optional<SamplePoint>& p =
+                points[size_t(alongX ? y : k) * size_t(w) + size_t(alongX ? k : x)];
             return p ? p->origin : points[size_t(y) * size_t(w) + size_t(x)]->origin;
         };
-        if ((pos < size - 1 && bias >= 0) || (pos == 0 && bias <= 0)) return pos < size - 1 ? at(pos + 1) - at(pos) : Vec3{};
+        if ((pos < size - 1 && forward) || pos == 0) return pos < size - 1 ? at(pos + 1) - at(pos) : Vec3{};
         return at(pos) - at(pos - 1);
     }
 
@@ -202,19 +203,18 @@ struct LuxelSampler {
     Vec3 subsample(const Light& light, const std::vector<std::optional<SamplePoint>>& points, int w, int h, int x, int y,
                    Vec3 origin, float bias, int samples, int maxSamples, Vec3 centre) const {
         if (samples >= maxSamples) return centre;
-        constexpr float kDirs[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+        // Sub-sample k sits at (-bias, -bias), (+, -), (-, +), (+, +) steps from `origin`.
+        const Vec3 stepS[2] = {luxelStep(points, w, h, x, y, true, false), luxelStep(points, w, h, x, y, true, true)};
+        const Vec3 stepT[2] = {luxelStep(points, w, h, x, y, false, false), luxelStep(points, w, h, x, y, false, true)};
         const SamplePoint& luxel = *points[size_t(y) * size_t(w) + size_t(x)];
         Vec3 values[4], origins[4];
         bool mapped[4] = {false, false, false, false};
         int numMapped = 0, lighted = 0;
         Vec3 total;
         for (int k = 0; k < 4; ++k) {
-            const float bx = bias * kDirs[k][0], by = bias * kDirs[k][1];
-            origins[k] = origin + luxelStep(points, w, h, x, y, 1, 0, bx) * bx + luxelStep(points, w, h, x, y, 0, 1, by) * by;
-            const int cluster =
-                ctx.tree && !ctx.bsp.nodes.empty()
-                    ? clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(origins[k], 2 * kLuxelEpsilon), clusters)
-                    : 0;
+            const bool plusS = k & 1, plusT = k & 2;
+            origins[k] = origin + stepS[plusS] * (plusS ? bias : -bias) + stepT[plusT] * (plusT ? bias : -bias);
+            const int cluster = ctx.tree && !ctx.bsp.nodes.empty() ? freeCluster(origins[k], 2 * kLuxelEpsilon) : 0;
             if (cluster < 0) continue;
             values[k] = lightAt(light, SamplePoint{origins[k], luxel.normal, ctx.tree ? cluster : -1, twoSided});
             mapped[k] = true;
