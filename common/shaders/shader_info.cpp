@@ -11,7 +11,8 @@ std::vector<std::string> ShaderInfo::lightImageCandidates() const {
     if (isNoDraw()) return out;
     for (const std::string* path : {&lightImage, &editorImage, &name}) {
         if (path->empty()) continue;
-        bool seen = std::any_of(out.begin(), out.end(), [&](const std::string& p) { return equalsNoCase(p, *path); });
+        // Loading ignores one extension, so "x.tga" and "x" are the same image.
+        bool seen = std::any_of(out.begin(), out.end(), [&](const std::string& p) { return shaderKey(p) == shaderKey(*path); });
         if (!seen) out.push_back(*path);
     }
     return out;

@@ -287,6 +287,12 @@ TEST(ShaderParser, LightImageOrderFollowsQ3map2) {
     EXPECT_EQ(b.lightImage, "");
     EXPECT_EQ(b.firstStageImage, "textures/stage.tga");
     EXPECT_EQ(b.lightImageCandidates(), (std::vector<std::string>{"textures/ed.tga", "x"}));
+    // An editor image that is the shader's own name with an extension is one candidate, not two;
+    // "x.blend.tga" is another image than "x".
+    EXPECT_EQ(parseOne("textures/a/w\n{\n qer_editorImage textures/a/w.tga\n}\n").lightImageCandidates(),
+              std::vector<std::string>{"textures/a/w.tga"});
+    EXPECT_EQ(parseOne("textures/a/w\n{\n q3map_lightImage textures/a/w.blend.tga\n}\n").lightImageCandidates(),
+              (std::vector<std::string>{"textures/a/w.blend.tga", "textures/a/w"}));
     // skyParms gives <env>_up; "-" and "full" give nothing.
     ShaderInfo c = parseOne("x\n{\n skyparms env/desert/desert - -\n}\n");
     EXPECT_EQ(c.skyParmsEnv, "env/desert/desert");
