@@ -1,5 +1,6 @@
 """What the bench scripts share: the OpenArena data cache, a fresh copy of a shipped map, and the
 load average printed beside their figures."""
+import functools
 import os
 import shutil
 import subprocess
@@ -51,23 +52,44 @@ def load_average():
         return "?"
 
 
-def fnv1a64(path):
-    h = 0xcbf29ce484222325
-    with open(path, "rb") as f:
-        data = f.read()
+def _fnv1a64(h, data):
     for b in data:
         h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def fnv1a64(path):
+    with open(path, "rb") as f:
+        return "%016x" % _fnv1a64(0xcbf29ce484222325, f.read())
+
+
+@functools.lru_cache(maxsize=None)
+def reference_hash(reference):
+    """FNV-1a 64 over the reference's folder (each regular file's name, a NUL, its bytes, in name
+    order): its identity in cache keys, whatever its timestamps (tests/conformance computes the same)."""
+    folder = os.path.dirname(os.path.abspath(reference))
+    h = 0xcbf29ce484222325
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if not os.path.isfile(path):
+            continue
+        with open(path, "rb") as f:
+            h = _fnv1a64(h, name.encode() + b"\0" + f.read())
     return "%016x" % h
+
+
+def fresh_key(reference, map_source):
+    """The cache folder name of a map compiled by the reference: <map>-<reference hash>-<.map hash>."""
+    name = os.path.splitext(os.path.basename(map_source))[0]
+    return "%s-%s-%s" % (name, reference_hash(reference), fnv1a64(map_source))
 
 
 def fresh_compile(reference, game_base, cache, map_source, prog):
     """The reference's -bsp -meta and -vis -fast of a .map, cached under <cache>/conformance/fresh/
-    (keyed by the reference binary's size and mtime and the .map's FNV-1a hash, the same cache the
-    conformance tests use): the folder holding maps/NAME.bsp, .srf and .map. A failure ends the
+    (keyed by fresh_key, the same cache the conformance tests use): the folder holding maps/NAME.bsp, .srf and .map. A failure ends the
     program with a message naming `prog`."""
     name = os.path.splitext(os.path.basename(map_source))[0]
-    st = os.stat(reference)
-    key = "%s-%d-%d-%s" % (name, st.st_size, int(st.st_mtime), fnv1a64(map_source))
+    key = fresh_key(reference, map_source)
     root = os.path.join(cache, "conformance", "fresh")
     final = os.path.join(root, key)
     if os.path.exists(os.path.join(final, "maps", name + ".bsp")):

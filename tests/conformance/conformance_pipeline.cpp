@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -71,11 +72,33 @@ std::string fileHash(const fs::path& path) {
     return buf;
 }
 
+std::string referenceHash(const fs::path& reference) {
+    // Everything in the reference's folder (the wrapper and the binary it runs), by name: a copy
+    // with new timestamps keeps its cache, a changed binary gets a new one.
+    const fs::path folder = fs::absolute(reference).parent_path();
+    std::vector<fs::path> files;
+    std::error_code error;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
+        if (entry.is_regular_file()) files.push_back(entry.path());
+    if (error || files.empty()) throw FileError(folder.string() + ": cannot list the reference q3map2's folder");
+    std::sort(files.begin(), files.end());
+    uint64_t h = 0xcbf29ce484222325ull;
+    auto mix = [&h](uint8_t b) {
+        h ^= b;
+        h *= 0x100000001b3ull;
+    };
+    for (const fs::path& file : files) {
+        for (char c : file.filename().string()) mix(static_cast<uint8_t>(c));
+        mix(0);
+        for (uint8_t b : readFileBytes(file)) mix(b);
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
 std::string freshCacheKey(const fs::path& reference, const fs::path& mapSource) {
-    struct stat st {};
-    if (::stat(reference.c_str(), &st) != 0) throw FileError(reference.string() + ": cannot stat the reference q3map2");
-    return mapSource.stem().string() + "-" + std::to_string(static_cast<long long>(st.st_size)) + "-" +
-           std::to_string(static_cast<long long>(st.st_mtim.tv_sec)) + "-" + fileHash(mapSource);
+    return mapSource.stem().string() + "-" + referenceHash(reference) + "-" + fileHash(mapSource);
 }
 
 fs::path freshCompile(const fs::path& reference, const fs::path& gameBase, const fs::path& dataCache,

@@ -2,7 +2,7 @@
 // -vis -fast) into a fresh BSP whose surfaces are all unlit, and each compiler lights a copy.
 //
 // Fresh compiles are cached outside the source tree, under
-//   <data cache>/conformance/fresh/<map>-<reference size>-<reference mtime>-<.map FNV-1a 64 hex>/maps/
+//   <data cache>/conformance/fresh/<map>-<reference hash>-<.map FNV-1a 64 hex>/maps/
 // holding NAME.bsp, NAME.srf and NAME.map; bench/conformance uses the same layout and key.
 #pragma once
 
@@ -17,6 +17,10 @@ std::filesystem::path referenceBinary(const std::filesystem::path& fallback);
 
 // 64-bit FNV-1a of a file's bytes, as 16 lower-case hex digits. Throws FileError naming the file.
 std::string fileHash(const std::filesystem::path& path);
+
+// 64-bit FNV-1a over the reference's folder (each regular file's name, a NUL, its bytes, in name
+// order), as 16 hex digits: the reference's identity in cache keys, whatever its timestamps.
+std::string referenceHash(const std::filesystem::path& reference);
 
 // The cache folder name for a map compiled by a reference binary (see above).
 std::string freshCacheKey(const std::filesystem::path& reference, const std::filesystem::path& mapSource);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 
@@ -93,6 +94,29 @@ TEST_P(FreshPipeline, LightsRelightsIdenticallyAndLoadsInEngines) {
     expectSameButCommandLine(once, bsp::readBsp(relit));
 
     enginetest::expectLoads(lit, "ioq3,dp", work / "engine-logs");
+}
+
+// The cache key names the reference by its contents: new timestamps keep the key, a changed byte
+// in any file of its folder changes it.
+TEST(FreshCacheKey, FollowsTheReferenceFolderContentsNotItsTimestamps) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "fresh-cache-key";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "ref");
+    writeFileAtomic(dir / "ref" / "q3map2", std::string("#!/bin/sh\n"));
+    writeFileAtomic(dir / "ref" / "q3map2.x86_64", std::string("binary"));
+    writeFileAtomic(dir / "m.map", std::string("{\n}\n"));
+    const std::string key = freshCacheKey(dir / "ref" / "q3map2", dir / "m.map");
+    EXPECT_EQ(key.rfind("m-", 0), 0u) << key;
+    EXPECT_EQ(key.size(), 2u + 16u + 1u + 16u) << key;
+
+    fs::last_write_time(dir / "ref" / "q3map2.x86_64", fs::file_time_type::clock::now() - std::chrono::hours(48));
+    EXPECT_EQ(freshCacheKey(dir / "ref" / "q3map2", dir / "m.map"), key);
+
+    writeFileAtomic(dir / "ref" / "q3map2.x86_64", std::string("binarY"));
+    const std::string changed = freshCacheKey(dir / "ref" / "q3map2", dir / "m.map");
+    EXPECT_NE(changed, key);
+    EXPECT_EQ(changed.substr(changed.size() - 16), key.substr(key.size() - 16));  // same .map hash
+    fs::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Oacmp, FreshPipeline, ::testing::ValuesIn(mapNames()),

@@ -1,5 +1,5 @@
 // The reference q3map2's -vis results on real maps, cached outside the source tree under
-//   <data cache>/vis/<map>-<reference size>-<reference mtime>-<.map FNV-1a 64 hex>/
+//   <data cache>/vis/<map>-<reference hash>-<.map FNV-1a 64 hex>/
 // holding NAME.bsp and NAME.prt (the reference's -bsp -meta, no vis), NAME.fast.bsp (its
 // -vis -fast) and, when asked for, NAME.full.bsp (its full -vis), each made once.
 #pragma once
