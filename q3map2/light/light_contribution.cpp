@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "angle.h"
 #include "bsp_tree.h"
 #include "sky_visibility.h"
 #include "trace_scene.h"
@@ -135,12 +136,13 @@ float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> wi
     for (size_t i = 0; i < n; ++i) {
         const Vec3 a = dirs[i];
         const Vec3 b = dirs[(i + 1) % n];
-        Vec3 triNormal = cross(a, b);
+        const Vec3 triNormal = cross(a, b);
         const float len = length(triNormal);
         if (len < 0.0001f) continue;
-        triNormal = triNormal / len;
-        const double angle = std::acos(std::clamp(static_cast<double>(dot(a, b)), -1.0, 1.0));
-        total += static_cast<double>(dot(normal, triNormal)) * angle;
+        // The edge's angle from its sine and cosine: as exact as acos of the cosine, and finer
+        // for the small angles of far emitters.
+        const float angle = atan2NonNegative(len, dot(a, b));
+        total += static_cast<double>(dot(normal, triNormal) / len) * static_cast<double>(angle);
         if (total > 6.3 || total < -6.3) return 0;  // numerically broken polygon
     }
     return static_cast<float>(total / (2.0 * kPiD));

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "angle.h"
 #include "bsp_tree.h"
 #include "light_contribution.h"
 #include "light_test_util.h"
@@ -199,6 +200,32 @@ double cornerFormFactor(double a, double b, double h) {
     return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
             y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
            (2 * kPiD);
+}
+
+TEST(AreaLight, EdgeAnglesMatchAtan2OverTheHalfCircle) {
+    double worst = 0;
+    for (int i = 0; i <= 20000; ++i) {
+        const double theta = kPiD * i / 20000.0;
+        const float y = float(std::sin(theta)), x = float(std::cos(theta));
+        const double exact = std::atan2(double(y), double(x));
+        const double got = atan2NonNegative(y, x);
+        worst = std::max(worst, std::fabs(got - exact) / std::max(exact, 1e-3));
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_EQ(atan2NonNegative(0, 0), 0.0f);
+    EXPECT_FLOAT_EQ(atan2NonNegative(0, -2), float(kPiD));
+    EXPECT_FLOAT_EQ(atan2NonNegative(3, 0), float(kPiD / 2));
+    EXPECT_NEAR(atan2NonNegative(1e-6f, 1), 1e-6, 1e-12);  // small angles keep their precision
+}
+
+// A small emitter far away subtends edges of a few thousandths of a radian, where an acos of the
+// cosine loses most digits: the form factor must still match the analytic value.
+TEST(AreaLight, FarSmallEmitterFormFactorKeepsItsPrecision) {
+    const float h = 4000;
+    std::vector<Vec3> square{{-8, -8, h}, {-8, 8, h}, {8, 8, h}, {8, -8, h}};
+    const double expected = 4 * cornerFormFactor(8, 8, h);
+    const float ff = std::fabs(pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, square));
+    EXPECT_NEAR(ff / expected, 1.0, 2e-3) << ff << " vs " << expected;
 }
 
 TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
