@@ -148,6 +148,7 @@ void emitPiece(const PieceContext& ctx, const Piece& w, float subdivide) {
     light.type = LightType::Area;
     light.winding.reserve(w.size());
     for (const BouncePieceVertex& v : w) light.winding.push_back(v.vertex.xyz);
+    light.emitter = emitterBounds(light.winding);
     light.normal = normal;
     light.origin = windingCentroid(w, VertexPosition{}) + normal;  // nudged off the plane
     light.planeDist = dot(light.origin, normal);

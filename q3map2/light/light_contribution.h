@@ -54,6 +54,11 @@ struct LightingEnv {
 // (q3map2 PointToPolygonFormFactor). 0 for degenerate polygons.
 float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding);
 
+// A bound no smaller than |pointToPolygonFormFactor(point, normal, winding)| for the polygon of
+// `bounds` (unit `normal`): area x cosine bounds / (pi d^2) from the nearest possible distance d.
+// Infinity when the point may lie inside the bounding sphere or the bounds are unknown.
+float formFactorUpperBound(const EmitterBounds& bounds, Vec3 point, Vec3 normal);
+
 // Controlled-model terms (specs/light-models.md).
 float controlledFalloff(const ControlledParams& p, float distance);
 float controlledCone(const ControlledParams& p, Vec3 spotAxis, Vec3 towardsLight);

@@ -37,6 +37,20 @@ struct ControlledParams {
     float sphericalAmbient = 0;
 };
 
+// What the -fast test of an area light needs to know of its polygon without walking it: a sphere
+// around it, its area, and its plane when it is flat (see formFactorUpperBound).
+struct EmitterBounds {
+    Vec3 center;
+    float radius = -1;  // < 0: unknown, no bound
+    float area = 0;     // of the fan from the first corner (the polygon's, when it is flat)
+    bool flat = false;
+    Vec3 planeNormal;   // unit, when flat
+    float flatness = 0; // largest distance of a corner from the plane through the centre
+};
+
+// The bounds of an emitter polygon (radius < 0 for fewer than three corners).
+EmitterBounds emitterBounds(const std::vector<Vec3>& winding);
+
 struct Light {
     LightType type = LightType::Point;
     int entityNum = -1;  // originating entity, -1 for shader lights
@@ -68,6 +82,7 @@ struct Light {
     float add = 0;           // value * 3 * areaScale (form-factor scale)
     float planeDist = 0;     // dot(origin, normal)
     bool twoSided = false;
+    EmitterBounds emitter;   // of `winding`: set with it
 
     // Suns: -1 lights through any sky, otherwise only sky surfaces of this sky index.
     int skyIndex = -1;

@@ -44,6 +44,7 @@ void emitAreaLight(const AreaLightContext& ctx, const Winding& w) {
     Light light;
     light.type = LightType::Area;
     light.winding = w;
+    light.emitter = emitterBounds(light.winding);
     light.falloffTolerance = ctx.scales.falloffTolerance;
     light.fast = ctx.scales.fast;
     light.photons = si.surfaceLight * area * ctx.scales.areaScale;
@@ -74,6 +75,7 @@ void emitAreaLight(const AreaLightContext& ctx, const Winding& w) {
         splash.add = light.add * kBacksplashGain * fraction;
         splash.winding.clear();
         for (size_t i = w.size(); i-- > 0;) splash.winding.push_back(w[i] + ctx.normal * splashDistance);
+        splash.emitter = emitterBounds(splash.winding);
         splash.origin = light.origin + ctx.normal * splashDistance;
         splash.normal = -ctx.normal;
         splash.planeDist = dot(splash.origin, splash.normal);

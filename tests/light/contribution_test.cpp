@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "angle.h"
 #include "bsp_tree.h"
@@ -226,6 +227,48 @@ TEST(AreaLight, FarSmallEmitterFormFactorKeepsItsPrecision) {
     const double expected = 4 * cornerFormFactor(8, 8, h);
     const float ff = std::fabs(pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, square));
     EXPECT_NEAR(ff / expected, 1.0, 2e-3) << ff << " vs " << expected;
+}
+
+// The -fast pre-test must never reject a pair the exact factor would keep: over random flat and
+// bent polygons, points and normals the bound stays above |F|, and it is tight enough to matter
+// far from the emitter.
+TEST(AreaLight, FormFactorUpperBoundHoldsAndIsUseful) {
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> unit(-1, 1);
+    auto randomUnit = [&] {
+        for (;;) {
+            const Vec3 v{unit(rng), unit(rng), unit(rng)};
+            if (length(v) > 0.1f && length(v) <= 1) return normalize(v);
+        }
+    };
+    int finite = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const int corners = 3 + trial % 4;
+        const float size = 4 + 60 * (unit(rng) + 1);
+        const bool bent = trial % 5 == 0;  // (triangles stay flat)
+        std::vector<Vec3> winding;
+        for (int i = 0; i < corners; ++i) {
+            const float a = 2 * float(kPiD) * float(i) / float(corners);
+            winding.push_back({size * std::cos(a), size * std::sin(a), bent ? size * 0.3f * unit(rng) : 0.0f});
+        }
+        const Vec3 point = Vec3{unit(rng), unit(rng), unit(rng)} * (size * 12);
+        const Vec3 normal = randomUnit();
+        const EmitterBounds bounds = emitterBounds(winding);
+        if (!bent) ASSERT_TRUE(bounds.flat);
+        const float exact = std::fabs(pointToPolygonFormFactor(point, normal, winding));
+        const float bound = formFactorUpperBound(bounds, point, normal);
+        ASSERT_GE(bound, exact) << "trial " << trial;
+        finite += std::isfinite(bound);
+    }
+    EXPECT_GT(finite, 15000);
+
+    // A 32-unit square seen edge-on from 1000 units: the bound is far below the head-on value.
+    const std::vector<Vec3> square{{-16, -16, 0}, {16, -16, 0}, {16, 16, 0}, {-16, 16, 0}};
+    const float edgeOn = formFactorUpperBound(emitterBounds(square), {1000, 0, 0}, {-1, 0, 0});
+    const float headOn = formFactorUpperBound(emitterBounds(square), {0, 0, 1000}, {0, 0, -1});
+    EXPECT_LT(edgeOn, headOn * 0.1f);
+    EXPECT_GE(headOn, std::fabs(pointToPolygonFormFactor({0, 0, 1000}, {0, 0, -1}, square)));
+    EXPECT_FALSE(std::isfinite(formFactorUpperBound(EmitterBounds{}, {0, 0, 1000}, {0, 0, -1})));
 }
 
 TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
