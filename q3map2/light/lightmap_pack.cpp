@@ -1,8 +1,10 @@
 #include "lightmap_pack.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <system_error>
 #include <tuple>
 
@@ -35,23 +37,86 @@ int usedTexels(const LightmapBlock& b, bool solid) {
     return n;
 }
 
+// A page's used texels as one bit each, row by row: a placement test compares a block row with
+// a page row a 64-texel word at a time instead of texel by texel.
 struct Page {
     std::vector<uint8_t> rgb;
     std::vector<uint8_t> used;
+    std::vector<uint64_t> usedBits;  // pageSize rows of wordsPerRow words
+    int wordsPerRow = 0;
     int freeTexels = 0;
 };
 
-// q3map2 TestOutLightmapStamp: the block must lie inside the page (its full size, even when solid)
-// and its used texels (one texel when solid) must all be free.
-bool stampFits(const Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, int y) {
+// q3map2 TestOutLightmapStamp for a solid block: it must lie inside the page at its full size,
+// and its one texel must be free.
+bool solidStampFits(const Page& page, int pageSize, const LightmapBlock& b, int x, int y) {
     if (x < 0 || y < 0 || x + b.width > pageSize || y + b.height > pageSize) return false;
-    if (solid) return !page.used[size_t(y) * pageSize + x];
+    return !page.used[size_t(y) * pageSize + x];
+}
+
+// The used texels of a block as runs of columns, row by row.
+struct TexelRun {
+    int row = 0, first = 0, length = 0;
+};
+
+std::vector<TexelRun> texelRuns(const LightmapBlock& b) {
+    std::vector<TexelRun> runs;
     for (int sy = 0; sy < b.height; ++sy)
-        for (int sx = 0; sx < b.width; ++sx) {
-            if (!texelUsed(b, size_t(sy) * b.width + sx)) continue;
-            if (page.used[size_t(y + sy) * pageSize + (x + sx)]) return false;
+        for (int sx = 0; sx < b.width;) {
+            if (!texelUsed(b, size_t(sy) * b.width + sx)) {
+                ++sx;
+                continue;
+            }
+            TexelRun run{sy, sx, 0};
+            while (sx < b.width && texelUsed(b, size_t(sy) * b.width + sx)) ++sx, ++run.length;
+            runs.push_back(run);
         }
-    return true;
+    return runs;
+}
+
+// dst |= src shifted down by `shift` bits (bit i + shift of src lands on bit i).
+void orShiftedDown(const uint64_t* src, int words, int shift, uint64_t* dst) {
+    const int q = shift / 64, r = shift % 64;
+    for (int w = 0; w + q < words; ++w) {
+        uint64_t v = src[w + q] >> r;
+        if (r != 0 && w + q + 1 < words) v |= src[w + q + 1] << (64 - r);
+        dst[w] |= v;
+    }
+}
+
+// The first clear bit of `bits` below `limit`, or -1.
+int firstClearBit(const std::vector<uint64_t>& bits, int limit) {
+    for (int w = 0; w * 64 < limit; ++w) {
+        const uint64_t clear = ~bits[size_t(w)];
+        if (clear == 0) continue;
+        const int x = w * 64 + std::countr_zero(clear);
+        return x < limit ? x : -1;
+    }
+    return -1;
+}
+
+// q3map2 TestOutLightmapStamp for every x of one page row at once: bit x of `blocked` is set when
+// the block placed at (x, y) would cover a used texel. A run of `length` columns from `first`
+// collides at x when any page texel x + first .. x + first + length - 1 is used: the page row,
+// smeared down over the run's length, then shifted down by its start. Stops early once every x
+// below `xMax` is blocked.
+void blockedColumns(const Page& page, std::span<const TexelRun> runs, int y, int xMax, std::vector<uint64_t>& blocked,
+                    std::vector<uint64_t>& smear, std::vector<uint64_t>& scratch) {
+    const int words = page.wordsPerRow;
+    std::fill(blocked.begin(), blocked.end(), 0);
+    for (const TexelRun& run : runs) {
+        if (firstClearBit(blocked, xMax) < 0) return;
+        const uint64_t* row = &page.usedBits[size_t(y + run.row) * size_t(words)];
+        std::copy(row, row + words, smear.begin());
+        int covered = 1;  // smear holds the OR of the row shifted down by 0 .. covered - 1
+        while (covered < run.length) {
+            const int step = std::min(covered, run.length - covered);
+            scratch = smear;
+            orShiftedDown(scratch.data(), words, step, smear.data());
+            covered += step;
+        }
+        orShiftedDown(smear.data(), words, run.first, blocked.data());
+    }
 }
 
 void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, int y) {
@@ -59,6 +124,7 @@ void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, 
         const size_t o = size_t(py) * pageSize + px;
         if (!page.used[o]) --page.freeTexels;
         page.used[o] = 1;
+        page.usedBits[size_t(py) * size_t(page.wordsPerRow) + size_t(px / 64)] |= uint64_t(1) << (px % 64);
         for (int k = 0; k < 3; ++k) page.rgb[o * 3 + size_t(k)] = c[k];
     };
     if (solid) {
@@ -163,12 +229,24 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     // Identical lightmaps share the texels of the first one.
     std::vector<int> twin(blocks.size(), -1);
     if (options.collapse) {
+        // Only blocks alike in these keys can match (solid ones by colour, others by size): the
+        // pairwise search runs within each group, in block order, with the same outcome.
+        std::map<std::tuple<bool, int, int, int>, std::vector<size_t>> groups;
         for (size_t i = 0; i < blocks.size(); ++i) {
-            if (twin[i] >= 0) continue;
-            for (size_t j = i + 1; j < blocks.size(); ++j)
-                if (twin[j] < 0 && blocksMatchKnown(blocks[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
-                    twin[j] = int(i);
+            const auto key = solid[i] ? std::make_tuple(true, int(colors[i][0]), int(colors[i][1]), int(colors[i][2]))
+                                      : std::make_tuple(false, blocks[i].width, blocks[i].height, 0);
+            groups[key].push_back(i);
         }
+        for (const auto& [key, members] : groups)
+            for (size_t a = 0; a < members.size(); ++a) {
+                const size_t i = members[a];
+                if (twin[i] >= 0) continue;
+                for (size_t c = a + 1; c < members.size(); ++c) {
+                    const size_t j = members[c];
+                    if (twin[j] < 0 && blocksMatchKnown(blocks[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
+                        twin[j] = int(i);
+                }
+            }
     }
 
     std::vector<size_t> order;
@@ -181,10 +259,12 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
 
     std::vector<Page> pages;
     const int pageTexels = pageSize * pageSize;
+    std::vector<uint64_t> blocked(size_t((pageSize + 63) / 64)), smear(blocked.size()), scratch(blocked.size());
     for (size_t index : order) {
         const LightmapBlock& b = blocks[index];
         const bool isSolid = solid[index] != 0;
         const int needed = usedTexels(b, isSolid);
+        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(b);
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
             const Page& page = pages[p];
@@ -195,17 +275,34 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             const int yMax = isSolid ? pageSize : pageSize - b.height + 1;
             const int xStep = options.fastAllocate ? std::max(1, b.width / 15) : 1;
             const int yStep = options.fastAllocate ? std::max(1, b.height / 15) : 1;
-            for (int y = 0; y < yMax && pageIndex < 0; y += yStep)
+            for (int y = 0; y < yMax && pageIndex < 0; y += yStep) {
+                if (isSolid) {
+                    for (int x = 0; x < xMax; x += xStep)
+                        if (solidStampFits(page, pageSize, b, x, y)) {
+                            pageIndex = int(p), px = x, py = y;
+                            break;
+                        }
+                    continue;
+                }
+                blockedColumns(page, runs, y, xMax, blocked, smear, scratch);
+                if (xStep == 1) {
+                    const int x = firstClearBit(blocked, xMax);
+                    if (x >= 0) pageIndex = int(p), px = x, py = y;
+                    continue;
+                }
                 for (int x = 0; x < xMax; x += xStep)
-                    if (stampFits(page, pageSize, b, isSolid, x, y)) {
+                    if (!((blocked[size_t(x / 64)] >> (x % 64)) & 1)) {
                         pageIndex = int(p), px = x, py = y;
                         break;
                     }
+            }
         }
         if (pageIndex < 0) {
             Page fresh;
             fresh.rgb.assign(size_t(pageTexels) * 3, 0);
             fresh.used.assign(size_t(pageTexels), 0);
+            fresh.wordsPerRow = (pageSize + 63) / 64;
+            fresh.usedBits.assign(size_t(pageSize) * size_t(fresh.wordsPerRow), 0);
             fresh.freeTexels = pageTexels;
             pages.push_back(std::move(fresh));
             pageIndex = int(pages.size()) - 1;

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <random>
+#include <tuple>
 
 #include "file_io.h"
 #include "image.h"
@@ -274,6 +277,88 @@ TEST(LightmapPack, ExternalTgaPages) {
     EXPECT_EQ(page1.width, 8);
     EXPECT_EQ(page1.texel(3, 2)[0], 50 + 30);
     EXPECT_EQ(page1.texel(3, 2)[1], 50 + 20);
+}
+
+// Replays a packing texel by texel, as q3map2 places blocks: in sorted order, each block at the
+// first position (page, then row, then column, with the fast-allocation steps) where all its used
+// texels are free. Random blocks with holes, several page sizes (multi-word rows included).
+TEST(LightmapPack, PlacementsAreTheFirstFitOfATexelByTexelSearch) {
+    std::mt19937 rng(7);
+    for (int pageSize : {16, 64, 128, 256}) {
+        for (bool fast : {false, true}) {
+            std::vector<LightmapBlock> blocks;
+            for (int i = 0; i < 160; ++i) {
+                const int w = 1 + int(rng() % uint32_t(std::min(pageSize, 70)));
+                const int h = 1 + int(rng() % uint32_t(std::min(pageSize, 40)));
+                LightmapBlock b = gradient(w, h, int(rng() % 200), i % 3 ? "textures/a" : "textures/b");
+                if (i % 4 == 0) {  // holes: a disc or random texels
+                    b.used.assign(b.texels.size(), 1);
+                    for (int y = 0; y < h; ++y)
+                        for (int x = 0; x < w; ++x)
+                            if ((i % 8 == 0) ? (2 * x - w) * (2 * x - w) + (2 * y - h) * (2 * y - h) > w * h
+                                             : rng() % 3 == 0)
+                                b.used[size_t(y) * w + x] = 0;
+                }
+                blocks.push_back(std::move(b));
+            }
+            PackOptions options = slow(pageSize);
+            options.fastAllocate = fast;
+            const PackedLightmaps packed = packLightmaps(blocks, options);
+
+            std::vector<size_t> order(blocks.size());
+            for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+            std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+                const long areaA = long(blocks[a].width) * blocks[a].height;
+                const long areaB = long(blocks[b].width) * blocks[b].height;
+                return std::tie(blocks[a].sortKey, areaB, a) < std::tie(blocks[b].sortKey, areaA, b);
+            });
+            std::vector<std::vector<uint8_t>> pages;
+            auto used = [&](const LightmapBlock& b, bool solid, int sx, int sy) {
+                if (solid) return sx == 0 && sy == 0;
+                return b.used.empty() || b.used[size_t(sy) * b.width + sx] != 0;
+            };
+            auto fits = [&](const std::vector<uint8_t>& page, const LightmapBlock& b, bool solid, int x, int y) {
+                if (x + b.width > pageSize || y + b.height > pageSize) return false;
+                for (int sy = 0; sy < b.height; ++sy)
+                    for (int sx = 0; sx < b.width; ++sx)
+                        if (used(b, solid, sx, sy) && page[size_t(y + sy) * pageSize + x + sx]) return false;
+                return true;
+            };
+            for (size_t index : order) {
+                const BlockPlacement& at = packed.placements[index];
+                if (at.twinOf >= 0) continue;
+                const LightmapBlock& b = blocks[index];
+                const bool solid = at.solid;
+                int needed = 0;
+                for (int sy = 0; sy < b.height; ++sy)
+                    for (int sx = 0; sx < b.width; ++sx) needed += used(b, solid, sx, sy);
+                int page = -1, px = 0, py = 0;
+                for (size_t p = 0; p < pages.size() && page < 0; ++p) {
+                    const int free = int(std::count(pages[p].begin(), pages[p].end(), 0));
+                    if (free < needed || (fast && free < pageSize * pageSize / 10)) continue;
+                    const int xStep = fast ? std::max(1, b.width / 15) : 1;
+                    const int yStep = fast ? std::max(1, b.height / 15) : 1;
+                    for (int y = 0; y < pageSize && page < 0; y += yStep)
+                        for (int x = 0; x < pageSize; x += xStep)
+                            if (fits(pages[p], b, solid, x, y)) {
+                                page = int(p), px = x, py = y;
+                                break;
+                            }
+                }
+                if (page < 0) {
+                    pages.emplace_back(size_t(pageSize) * pageSize, 0);
+                    page = int(pages.size()) - 1;
+                }
+                ASSERT_EQ(at.page, page) << "block " << index << " page size " << pageSize;
+                ASSERT_EQ(at.x, px) << "block " << index;
+                ASSERT_EQ(at.y, py) << "block " << index;
+                for (int sy = 0; sy < b.height; ++sy)
+                    for (int sx = 0; sx < b.width; ++sx)
+                        if (used(b, solid, sx, sy)) pages[size_t(page)][size_t(py + sy) * pageSize + px + sx] = 1;
+            }
+            EXPECT_EQ(packed.pages.size(), pages.size());
+        }
+    }
 }
 
 }  // namespace
