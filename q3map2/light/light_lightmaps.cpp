@@ -37,11 +37,14 @@ std::vector<SurfaceLight> lightPass(const LightContext& ctx, std::span<const int
                                     const LayoutOptions& layoutOptions, const LuxelPasses* passes,
                                     const SurfacePass& pass, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
+    const std::vector<float> envelopes = lightEnvelopes(pass.lights, env.settings.forceFast);
+    SurfacePass withEnvelopes = pass;
+    withEnvelopes.envelopes = envelopes;
     std::vector<SurfaceLight> results(surfaces.size());
     Progress progress = Progress::forConsole(log, surfaces.size());
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t k = range.begin(); k != range.end(); ++k) {
-            results[k] = lightSurface(ctx, env, surfaces[k], layoutOptions, passes, pass);
+            results[k] = lightSurface(ctx, env, surfaces[k], layoutOptions, passes, withEnvelopes);
             progress.advance();
         }
     };

@@ -5,6 +5,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
 
@@ -99,6 +100,10 @@ void lightVertexes(LightContext& ctx, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
     const LuxelPasses* passes = ctx.luxelPasses && ctx.luxelPasses->dirty ? ctx.luxelPasses.get() : nullptr;
     std::vector<uint64_t> counts(bsp.surfaces.size(), 0);
+    const std::array<std::span<const Light>, 2> lightLists{std::span<const Light>(ctx.lights),
+                                                           std::span<const Light>(ctx.bounceLights)};
+    const std::array<std::vector<float>, 2> envelopes{lightEnvelopes(lightLists[0], env.settings.forceFast),
+                                                      lightEnvelopes(lightLists[1], env.settings.forceFast)};
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const bsp::Surface& s = bsp.surfaces[i];
@@ -117,9 +122,10 @@ void lightVertexes(LightContext& ctx, Log& log) {
             reach.mins -= Vec3::splat(2 * kVertexNudge);
             reach.maxs += Vec3::splat(2 * kVertexNudge);
             std::vector<const Light*> reaching;
-            for (std::span<const Light> lights : {std::span<const Light>(ctx.lights), std::span<const Light>(ctx.bounceLights)})
-                for (const Light& light : lights)
-                    if (lightReachesBounds(light, reach, env.settings.forceFast)) reaching.push_back(&light);
+            for (size_t list = 0; list < lightLists.size(); ++list)
+                for (size_t k = 0; k < lightLists[list].size(); ++k)
+                    if (lightReachesBounds(lightLists[list][k], reach, envelopes[list][k]))
+                        reaching.push_back(&lightLists[list][k]);
             const bool dirty = passes && !passes->noDirty[static_cast<size_t>(s.shaderNum)];
             const VertexTracer tracer{ctx,           surfaceEnv, clusters, reaching, shader.twoSided, shader.forceSunlight,
                                       dirty ? passes : nullptr};

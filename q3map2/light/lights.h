@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -263,13 +264,24 @@ inline float lightEnvelope(const Light& light, bool forceFast = false) {
     }
 }
 
+inline std::vector<float> lightEnvelopes(std::span<const Light> lights, bool forceFast) {
+    std::vector<float> out;
+    out.reserve(lights.size());
+    for (const Light& light : lights) out.push_back(lightEnvelope(light, forceFast));
+    return out;
+}
+
 // Whether any point of `bounds` lies inside the light's envelope (suns and unbounded lights: always).
-inline bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
-    if (light.type == LightType::Sun) return true;
-    const float envelope = lightEnvelope(light, forceFast);
-    if (!std::isfinite(envelope)) return true;
+// With the light's envelope already known (loops over many bounds ask for it once).
+inline bool lightReachesBounds(const Light& light, const Bounds& bounds, float envelope) {
+    if (light.type == LightType::Sun || !std::isfinite(envelope)) return true;
     const Vec3 nearest = vmin(vmax(light.origin, bounds.mins), bounds.maxs);
     return distance(nearest, light.origin) < envelope;
+}
+
+inline bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
+    if (light.type == LightType::Sun) return true;
+    return lightReachesBounds(light, bounds, lightEnvelope(light, forceFast));
 }
 
 }  // namespace q3::light

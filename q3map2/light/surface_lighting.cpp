@@ -61,10 +61,10 @@ struct LuxelTiles {
     }
 
     // The tiles the light's envelope reaches.
-    void reachedBy(const Light& light, bool forceFast, std::vector<uint32_t>& out) const {
+    void reachedBy(const Light& light, float envelope, std::vector<uint32_t>& out) const {
         out.clear();
         for (size_t t = 0; t < bounds.size(); ++t)
-            if (lightReachesBounds(light, bounds[t], forceFast)) out.push_back(static_cast<uint32_t>(t));
+            if (lightReachesBounds(light, bounds[t], envelope)) out.push_back(static_cast<uint32_t>(t));
     }
     template <typename Visit>
     void forEachLuxel(std::span<const uint32_t> tiles, Visit&& visit) const {
@@ -512,10 +512,13 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const LuxelTiles tiles(points, w, h, kTileEdge);
     std::vector<uint32_t> active;  // tiles the light reaches
     LuxelSampler::Scratch scratch;
-    for (const Light& lt : pass.lights) {
-        if (bounds.empty() || !lightReachesBounds(lt, bounds, env.settings.forceFast)) continue;
+    for (size_t lightIndex = 0; lightIndex < pass.lights.size(); ++lightIndex) {
+        const Light& lt = pass.lights[lightIndex];
+        const float envelope = lightIndex < pass.envelopes.size() ? pass.envelopes[lightIndex]
+                                                                  : lightEnvelope(lt, env.settings.forceFast);
+        if (bounds.empty() || !lightReachesBounds(lt, bounds, envelope)) continue;
         if (!inFrontOfPlane(lt, reach) || !visibleFromLightmap(lt, reach, env.tree)) continue;
-        tiles.reachedBy(lt, env.settings.forceFast, active);
+        tiles.reachedBy(lt, envelope, active);
         if (active.empty()) continue;
         const int slot = light.slotFor(lt.style, light.images[0]);
         if (slot < 0) {

@@ -33,6 +33,9 @@ struct SurfacePass {
     std::span<const Light> lights;
     bool direct = true;   // the first pass: world ambient, floodlight and dirt
     bool deluxe = false;  // also sum the direction the style-0 light comes from
+    // lightEnvelope of each light, asked once per pass instead of once per surface and light;
+    // empty: computed where needed.
+    std::span<const float> envelopes = {};
 };
 
 struct SurfaceLight {
