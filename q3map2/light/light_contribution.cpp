@@ -126,24 +126,26 @@ std::optional<LightContribution> controlledContribution(const Light& light, Vec3
 float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
     const size_t n = winding.size();
     if (n < 3) return 0;
-    // Emitter pieces have a handful of corners: no allocation on this per-luxel, per-light path.
-    constexpr size_t kInline = 16;
-    std::array<Vec3, kInline> inlineDirs;
-    std::vector<Vec3> heapDirs(n > kInline ? n : 0);
-    Vec3* dirs = n > kInline ? heapDirs.data() : inlineDirs.data();
-    for (size_t i = 0; i < n; ++i) dirs[i] = normalize(winding[i] - point);
+    // Each edge adds its angle seen from the point times the cosine between the normal and the
+    // plane through the point and the edge. Both come from the cross and dot products of the two
+    // corner offsets, whatever their lengths: the offsets need no normalising.
     double total = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const Vec3 a = dirs[i];
-        const Vec3 b = dirs[(i + 1) % n];
-        const Vec3 triNormal = cross(a, b);
-        const float len = length(triNormal);
-        if (len < 0.0001f) continue;
-        // The edge's angle from its sine and cosine: as exact as acos of the cosine, and finer
-        // for the small angles of far emitters.
-        const float angle = atan2NonNegative(len, dot(a, b));
-        total += static_cast<double>(dot(normal, triNormal) / len) * static_cast<double>(angle);
-        if (total > 6.3 || total < -6.3) return 0;  // numerically broken polygon
+    Vec3 a = winding[0] - point;
+    float a2 = dot(a, a);
+    for (size_t i = 1; i <= n; ++i) {
+        const Vec3 b = winding[i % n] - point;
+        const float b2 = dot(b, b);
+        const Vec3 c = cross(a, b);
+        const float c2 = dot(c, c);
+        // An edge seen end-on (sine of its angle below 1e-4) adds nothing.
+        if (c2 >= 1e-8f * a2 * b2 && c2 > 0) {
+            const float sine = std::sqrt(c2);
+            const float angle = atan2NonNegative(sine, dot(a, b));
+            total += static_cast<double>(dot(normal, c) / sine) * static_cast<double>(angle);
+            if (total > 6.3 || total < -6.3) return 0;  // numerically broken polygon
+        }
+        a = b;
+        a2 = b2;
     }
     return static_cast<float>(total / (2.0 * kPiD));
 }
