@@ -35,11 +35,11 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
     return b;
 }
 
-void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, bool forceFast,
+void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         std::vector<uint32_t>& out) {
     out.clear();
     for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, forceFast))
+        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]))
             out.push_back(static_cast<uint32_t>(i));
 }
 
@@ -61,11 +61,12 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                        int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint) {
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
+    const std::vector<float> envelopes = lightEnvelopes(lights, forceFast);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         std::vector<uint32_t> candidates;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
-            gridLightsReaching(lights, gridBlockBounds(block, grid.mins, grid.size, margin), forceFast, candidates);
+            gridLightsReaching(lights, envelopes, gridBlockBounds(block, grid.mins, grid.size, margin), candidates);
             block.forEachPoint([&](int x, int y, int z) {
                 const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
                                   grid.mins.z + float(z) * grid.size.z};

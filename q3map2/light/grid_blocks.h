@@ -41,8 +41,8 @@ std::vector<GridBlock> gridBlocks(std::array<int, 3> bounds, int edge);
 Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margin);
 
 // Indices, in light order, of the lights that may light a grid point inside `bounds`: they affect
-// the grid and their envelope reaches the box.
-void gridLightsReaching(std::span<const Light> lights, const Bounds& bounds, bool forceFast,
+// the grid and their envelope (`envelopes`, lightEnvelope of each light) reaches the box.
+void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         std::vector<uint32_t>& out);
 
 class BspTree;
