@@ -222,6 +222,11 @@ float controlledIncidence(const ControlledParams& p, float cosine) {
 }
 
 std::optional<LightContribution> lightToSample(const Light& light, const SamplePoint& sample, const LightingEnv& env) {
+    return lightToSample(light, sample, env, lightEnvelope(light, env.settings.forceFast));
+}
+
+std::optional<LightContribution> lightToSample(const Light& light, const SamplePoint& sample, const LightingEnv& env,
+                                               float envelope) {
     if (!light.affectsSurfaces) return std::nullopt;
     const Vec3 p = sample.origin;
     const Vec3 n = sample.normal;
@@ -232,7 +237,6 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
     if (pvsCulled(light, sample.cluster, env)) return std::nullopt;
     if (light.controlled) return controlledContribution(light, p, &n, sample.twoSided, env);
 
-    const float envelope = lightEnvelope(light, env.settings.forceFast);
     switch (light.type) {
         case LightType::Sun: {
             const Vec3 dir = light.normal;
@@ -311,6 +315,11 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
 
 std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
                                                   const LightingEnv& env) {
+    return lightToGridPoint(light, origin, cluster, env, lightEnvelope(light, env.settings.forceFast));
+}
+
+std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
+                                                  const LightingEnv& env, float envelope) {
     if (!light.affectsGrid) return std::nullopt;
     if (light.type != LightType::Sun && env.settings.sunOnly) return std::nullopt;
     if (pvsCulled(light, cluster, env)) return std::nullopt;
@@ -322,7 +331,7 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
     }
     const Vec3 toLight = light.origin - origin;
     float dist = length(toLight);
-    if (dist > lightEnvelope(light, env.settings.forceFast)) return std::nullopt;
+    if (dist > envelope) return std::nullopt;
     const Vec3 dir = dist > 0 ? toLight / dist : Vec3{0, 0, 1};
     float add = 0;
     if (light.type == LightType::Area) {

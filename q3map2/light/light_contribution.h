@@ -69,6 +69,11 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
 // Light reaching a grid point (no surface, no angle term).
 std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
                                                   const LightingEnv& env);
+// The same with the light's lightEnvelope already known (loops over many samples ask once).
+std::optional<LightContribution> lightToSample(const Light& light, const SamplePoint& sample, const LightingEnv& env,
+                                               float envelope);
+std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
+                                                  const LightingEnv& env, float envelope);
 
 // Every contribution of `lights` to a sample / grid point, in light order.
 void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,

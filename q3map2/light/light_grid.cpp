@@ -47,6 +47,7 @@ void lightGrid(LightContext& ctx, Log& log) {
     const Vec3 nudgeBox = layout.size * (0.5f * kNudgeReach);
     const float nudgeRadius = length(nudgeBox);
     const std::vector<Vec3> nudges = nudgeOffsetsInBox(nudgeBox, 4);
+    const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
     log.info(strCat("light grid: ", layout.bounds[0], " x ", layout.bounds[1], " x ", layout.bounds[2], " = ",
@@ -67,7 +68,8 @@ void lightGrid(LightContext& ctx, Log& log) {
         contributions.clear();
         Vec3 total = ctx.world.ambient;
         for (uint32_t lightIndex : candidates) {
-            std::optional<LightContribution> c = lightToGridPoint(ctx.lights[lightIndex], origin, cluster, env);
+            std::optional<LightContribution> c =
+                lightToGridPoint(ctx.lights[lightIndex], origin, cluster, env, envelopes[lightIndex]);
             if (!c) continue;
             contributions.push_back(*c);
             total += c->color;

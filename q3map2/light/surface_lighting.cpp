@@ -155,11 +155,12 @@ struct LuxelSampler {
         rayLuxel.clear();
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
+        const float envelope = lightEnvelope(light, env.settings.forceFast);
         tiles.forEachLuxel(active, [&](uint32_t i) {
             out[i] = Vec3{};
             if (!points[i] || skip[i]) return;
             const size_t before = rays.size();
-            std::optional<LightContribution> c = lightToSample(light, *points[i], deferred);
+            std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);
             const bool traced = rays.size() > before;
             if (!c) {
                 rays.resize(before);
