@@ -17,7 +17,7 @@ bool shaderIsTranslucent(const bsp::Shader& shader) {
     return (shader.contentFlags & kTranslucentContents) != 0 || (shader.surfaceFlags & kTranslucentSurface) != 0;
 }
 
-BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShaders) : bsp_(bsp) {
+BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShaders, bool compactWalks) : bsp_(bsp) {
     opaque_.assign(bsp.brushes.size(), 0);
     if (!bsp.models.empty()) {
         // Only world brushes block light in q3map2's point-in-solid test.
@@ -44,6 +44,7 @@ BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShader
         numClusters_ = header[0];
         bytesPerCluster_ = header[1];
     }
+    if (compactWalks) buildCompactTree();
 }
 
 static double planeDistance(const bsp::Plane& plane, Vec3 p) {
@@ -51,7 +52,149 @@ static double planeDistance(const bsp::Plane& plane, Vec3 p) {
            double(plane.dist);
 }
 
+// A point as the compact walks read it: coordinates and their negations, exact in double.
+struct WalkPoint {
+    double v[6];
+    explicit WalkPoint(Vec3 p) : v{p.x, p.y, p.z, -double(p.x), -double(p.y), -double(p.z)} {}
+};
+
+// The same value as planeDistance for the node's plane (see CompactNode::axis).
+template <class Node>
+static inline double nodeDistance(const Node& n, const WalkPoint& p) {
+    if (n.axis < 6) return p.v[n.axis] - n.dist;
+    return double(n.normal[0]) * p.v[0] + double(n.normal[1]) * p.v[1] + double(n.normal[2]) * p.v[2] - n.dist;
+}
+
+void BspTree::buildCompactTree() {
+    const std::vector<bsp::Node>& nodes = bsp_.nodes;
+    const size_t numLeafs = bsp_.leafs.size();
+    if (nodes.empty() || nodes.size() > size_t(INT32_MAX) || numLeafs > size_t(INT32_MAX)) return;
+    // The compact walks rely on a proper tree: every reference in range, every node reached once
+    // from the root (no cycles, no shared subtrees) and paths short enough for fixed stacks.
+    // Anything else keeps the reference walks.
+    std::vector<int32_t> order{0};  // breadth first from the root
+    std::vector<int32_t> depth(nodes.size(), -1);
+    depth[0] = 0;
+    for (size_t i = 0; i < order.size(); ++i) {
+        const bsp::Node& n = nodes[size_t(order[i])];
+        if (n.planeNum < 0 || size_t(n.planeNum) >= bsp_.planes.size()) return;
+        for (const int32_t child : n.children) {
+            if (child < 0) {
+                if (size_t(-(int64_t(child) + 1)) >= numLeafs) return;
+                continue;
+            }
+            if (size_t(child) >= nodes.size() || depth[size_t(child)] >= 0) return;
+            depth[size_t(child)] = depth[size_t(order[i])] + 1;
+            if (depth[size_t(child)] >= kMaxCompactDepth) return;
+            order.push_back(child);
+        }
+    }
+
+    leafCluster_.resize(numLeafs);
+    for (size_t i = 0; i < numLeafs; ++i) leafCluster_[i] = bsp_.leafs[i].cluster;
+    // What each subtree holds, children before parents (they follow their parent in `order`); the
+    // segment walk's solid test is a leaf outside every cluster.
+    constexpr uint8_t kHasOpen = 1, kHasSolid = 2, kMixed = 3;
+    std::vector<uint8_t> kinds(nodes.size(), 0);
+    auto childKind = [&](int32_t child) -> uint8_t {
+        if (child >= 0) return kinds[size_t(child)];
+        return leafCluster_[size_t(-(int64_t(child) + 1))] == -1 ? kHasSolid : kHasOpen;
+    };
+    for (size_t i = order.size(); i-- > 0;) {
+        const bsp::Node& n = nodes[size_t(order[i])];
+        kinds[size_t(order[i])] = childKind(n.children[0]) | childKind(n.children[1]);
+    }
+
+    // Depth-first copies of the tree from the root: all of it for point walks, only the mixed
+    // subtrees for segment walks. `keep` says which child nodes are copied; `leafRef` what a child
+    // that is not copied becomes.
+    auto copyTree = [&](std::vector<CompactNode>& out, auto keep, auto leafRef) {
+        std::vector<int32_t> newIndex(nodes.size(), -1);
+        std::vector<int32_t> stack{0};
+        while (!stack.empty()) {
+            const int32_t index = stack.back();
+            stack.pop_back();
+            newIndex[size_t(index)] = int32_t(out.size());
+            const bsp::Node& n = nodes[size_t(index)];
+            const bsp::Plane& plane = bsp_.planes[size_t(n.planeNum)];
+            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, 6,
+                          {n.children[0], n.children[1]}};
+            for (int k = 0; k < 3 && c.axis == 6; ++k) {
+                const bool rest = plane.normal[(k + 1) % 3] == 0.0f && plane.normal[(k + 2) % 3] == 0.0f;
+                if (rest && plane.normal[k] == 1.0f) c.axis = k;
+                if (rest && plane.normal[k] == -1.0f) c.axis = k + 3;
+            }
+            out.push_back(c);
+            for (int side = 1; side >= 0; --side)
+                if (keep(n.children[side])) stack.push_back(n.children[side]);
+        }
+        for (CompactNode& c : out)
+            for (int32_t& child : c.children) child = keep(child) ? newIndex[size_t(child)] : leafRef(child);
+    };
+    copyTree(compact_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
+    const uint8_t rootKind = kinds[0];
+    segmentRoot_ = rootKind == kHasSolid ? kSolidSubtree : rootKind == kHasOpen ? kOpenSubtree : 0;
+    if (rootKind == kMixed) {
+        copyTree(
+            segmentTree_, [&](int32_t child) { return child >= 0 && kinds[size_t(child)] == kMixed; },
+            [&](int32_t child) { return childKind(child) == kHasSolid ? kSolidSubtree : kOpenSubtree; });
+    }
+}
+
 bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
+    if (bsp_.nodes.empty()) return false;
+    // Bounded coordinates keep every midpoint finite, where the axial shortcut and the full dot
+    // product agree (0 * inf would not); anything else takes the reference walk.
+    constexpr float kMaxCoord = 1e30f;
+    const bool bounded = std::fabs(from.x) <= kMaxCoord && std::fabs(from.y) <= kMaxCoord &&
+                         std::fabs(from.z) <= kMaxCoord && std::fabs(to.x) <= kMaxCoord &&
+                         std::fabs(to.y) <= kMaxCoord && std::fabs(to.z) <= kMaxCoord;
+    if (compact_.empty() || !bounded) return referenceSegmentCrossesSolid(from, to);
+    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
+    // Far sides still to walk. A push happens at most once per node of the current path, so the
+    // validated depth bounds the stack. The answer is a plain "any solid leaf", so the order in
+    // which sides are walked only decides how soon a hit ends the walk.
+    // Plain floats, not Vec3: the array must not be zero-filled on every call.
+    struct Pending {
+        int32_t node;
+        float start[3], end[3];
+    };
+    Pending stack[kMaxCompactDepth];
+    int top = 0;
+    int32_t node = segmentRoot_;
+    Vec3 start = from, end = to;
+    WalkPoint s(start), e(end);
+    while (true) {
+        if (node < 0) {
+            if (node == kSolidSubtree) return true;
+            if (top == 0) return false;
+            const Pending& next = stack[--top];
+            node = next.node;
+            start = Vec3::fromArray(next.start);
+            end = Vec3::fromArray(next.end);
+            s = WalkPoint(start);
+            e = WalkPoint(end);
+            continue;
+        }
+        const CompactNode& n = segmentTree_[size_t(node)];
+        const double front = nodeDistance(n, s), back = nodeDistance(n, e);
+        if (front >= -kOnEpsilon && back >= -kOnEpsilon) {
+            node = n.children[0];
+        } else if (front < kOnEpsilon && back < kOnEpsilon) {
+            node = n.children[1];
+        } else {
+            const int side = front < 0 ? 1 : 0;
+            const float frac = float(front / (front - back));
+            const Vec3 mid = start + (end - start) * frac;
+            stack[top++] = Pending{n.children[1 - side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
+            node = n.children[side];
+            end = mid;
+            e = WalkPoint(mid);
+        }
+    }
+}
+
+bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
     if (bsp_.nodes.empty()) return false;
     constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
     struct Local {
@@ -61,8 +204,8 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
             // Recursion only splits; the near side is walked first, the far side continues the loop.
             while (true) {
                 if (node < 0) {
-                    const int leaf = -node - 1;
-                    return leaf < 0 || leaf >= int(bsp.leafs.size()) || bsp.leafs[size_t(leaf)].cluster == -1;
+                    const int leaf = -(node + 1);
+                    return leaf >= int(bsp.leafs.size()) || bsp.leafs[size_t(leaf)].cluster == -1;
                 }
                 if (node >= int(bsp.nodes.size()) || depth > 4096) return false;  // hostile trees
                 const bsp::Node& n = bsp.nodes[size_t(node)];
@@ -88,35 +231,75 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
     return Local{*this}.crosses(0, from, to, 0);
 }
 
+int BspTree::compactLeafFrom(int node, Vec3 point) const {
+    const WalkPoint p(point);
+    // A point within 0.1 of a plane tries the front child first and keeps the leaf found there
+    // when it has a cluster; otherwise the back child of the innermost such node is walked, and
+    // the last leaf reached is the answer when none has a cluster. `pending` holds those back
+    // children, at most one per node of the path.
+    int32_t pending[kMaxCompactDepth];
+    int top = 0;
+    while (true) {
+        while (node >= 0) {
+            const CompactNode& n = compact_[size_t(node)];
+            const double d = nodeDistance(n, p);
+            if (d > 0.1) {
+                node = n.children[0];
+            } else if (d < -0.1) {
+                node = n.children[1];
+            } else {
+                pending[top++] = n.children[1];
+                node = n.children[0];
+            }
+        }
+        const int leaf = -node - 1;
+        if (top == 0 || leafCluster_[size_t(leaf)] != -1) return leaf;
+        node = pending[--top];
+    }
+}
+
 int BspTree::leafForPoint(Vec3 point) const {
+    if (compact_.empty()) return referenceLeafForPoint(point);
+    if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) return -1;
+    return compactLeafFrom(0, point);
+}
+
+int BspTree::referenceLeafForPoint(Vec3 point) const {
     if (bsp_.nodes.empty()) return bsp_.leafs.empty() ? -1 : 0;
     // A non-finite point compares as "on the plane" everywhere, which would walk both sides of
     // every node: it lies in no leaf.
     if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) return -1;
     // Iterative walk; a point on a plane (within 0.1) first tries the front child and keeps its
-    // leaf when that leaf belongs to a cluster.
+    // leaf when that leaf belongs to a cluster. A proper tree visits each node at most once, so a
+    // budget of one step per node only stops cyclic trees (as no leaf), like bad indices and
+    // nesting deeper than the segment walk allows.
     struct Local {
         const BspTree& tree;
         Vec3 p;
-        int walk(int node) const {
+        mutable size_t budget;
+        int walk(int node, int depth) const {
             const bsp::Bsp& bsp = tree.bsp_;
             while (node >= 0) {
-                const bsp::Node& n = bsp.nodes[node];
-                const double d = planeDistance(bsp.planes[n.planeNum], p);
+                if (size_t(node) >= bsp.nodes.size() || budget == 0 || depth > 4096) return -1;
+                --budget;
+                const bsp::Node& n = bsp.nodes[size_t(node)];
+                if (n.planeNum < 0 || size_t(n.planeNum) >= bsp.planes.size()) return -1;
+                const double d = planeDistance(bsp.planes[size_t(n.planeNum)], p);
                 if (d > 0.1) {
                     node = n.children[0];
                 } else if (d < -0.1) {
                     node = n.children[1];
                 } else {
-                    const int front = walk(n.children[0]);
-                    if (front >= 0 && front < int(bsp.leafs.size()) && bsp.leafs[front].cluster != -1) return front;
+                    const int front = walk(n.children[0], depth + 1);
+                    if (front >= 0 && front < int(bsp.leafs.size()) && bsp.leafs[size_t(front)].cluster != -1)
+                        return front;
                     node = n.children[1];
                 }
             }
-            return -node - 1;
+            return -(node + 1);
         }
     };
-    return Local{*this, point}.walk(0);
+    return Local{*this, point, bsp_.nodes.size()}.walk(0, 0);
 }
 
 int BspTree::clusterForPoint(Vec3 point) const {
@@ -141,7 +324,10 @@ bool BspTree::clusterVisible(int from, int to) const {
 }
 
 int BspTree::clusterForPointExt(Vec3 point, float epsilon) const {
-    const int leafNum = leafForPoint(point);
+    return clusterInLeaf(leafForPoint(point), point, epsilon);
+}
+
+int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     if (leafNum < 0 || leafNum >= int(bsp_.leafs.size())) return -1;
     const bsp::Leaf& leaf = bsp_.leafs[leafNum];
     if (leaf.cluster < 0) return -1;
@@ -204,9 +390,54 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, float radius, float ste
 }
 
 std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon) const {
+    // The candidates' box: while it lies wholly beyond 0.1 of a node plane on one side, every
+    // candidate's walk takes that side, so all walks can start below. The margin covers the
+    // rounding of box-corner distances against per-point ones many times over.
+    int32_t start = 0;
+    bool boxed = !compact_.empty() && offsets.size() > 1;
+    float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (size_t i = 0; i < offsets.size() && boxed; ++i) {
+        const Vec3 c = point + offsets[i];
+        const float v[3] = {c.x, c.y, c.z};
+        for (int k = 0; k < 3; ++k) {
+            if (!std::isfinite(v[k])) boxed = false;
+            lo[k] = i == 0 ? v[k] : std::min(lo[k], v[k]);
+            hi[k] = i == 0 ? v[k] : std::max(hi[k], v[k]);
+        }
+    }
+    while (boxed && start >= 0) {
+        const CompactNode& n = compact_[size_t(start)];
+        double dLo = -n.dist, dHi = -n.dist, scale = std::fabs(n.dist);
+        for (int k = 0; k < 3; ++k) {
+            const double w = n.normal[k];
+            dLo += w * (w >= 0 ? lo[k] : hi[k]);
+            dHi += w * (w >= 0 ? hi[k] : lo[k]);
+            scale += std::fabs(w) * std::max(std::fabs(lo[k]), std::fabs(hi[k]));
+        }
+        const double margin = 0.01 + 1e-9 * scale;
+        if (dLo > 0.1 + margin) start = n.children[0];
+        else if (dHi < -0.1 - margin) start = n.children[1];
+        else break;
+    }
+    if (boxed && start < 0) {
+        // Every candidate lies in this one leaf; only its brushes remain to test.
+        const int leaf = -(start + 1);
+        if (bsp_.leafs[size_t(leaf)].cluster < 0) return std::nullopt;
+        for (const Vec3& offset : offsets) {
+            const Vec3 candidate = point + offset;
+            if (clusterInLeaf(leaf, candidate, epsilon) >= 0) return candidate;
+        }
+        return std::nullopt;
+    }
     for (const Vec3& offset : offsets) {
         const Vec3 candidate = point + offset;
-        if (clusterForPointExt(candidate, epsilon) >= 0) return candidate;
+        int leaf;
+        if (boxed) {
+            leaf = compactLeafFrom(start, candidate);
+        } else {
+            leaf = leafForPoint(candidate);
+        }
+        if (clusterInLeaf(leaf, candidate, epsilon) >= 0) return candidate;
     }
     return std::nullopt;
 }

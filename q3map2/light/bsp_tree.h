@@ -43,8 +43,11 @@ class BspTree {
 public:
     // Keeps a reference to `bsp`, which must outlive the tree. `translucentShaders`, when not empty,
     // overrides shaderIsTranslucent per BSP shader index (the caller knows the real compile flags
-    // from the shader scripts).
-    explicit BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShaders = {});
+    // from the shader scripts). The walks use a compact copy of the node tree when it is a proper
+    // tree; `compactWalks` false keeps the plain walks over the BSP lumps (the reference the compact
+    // ones must match answer for answer).
+    explicit BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShaders = {},
+                     bool compactWalks = true);
 
     // Leaf containing the point. Points within 0.1 units of a node plane try the front side first
     // and keep it when its leaf has a cluster (q3map2 PointInLeafNum). Without nodes: leaf 0, or -1
@@ -78,11 +81,43 @@ public:
     // The same search over offsets computed once with nudgeOffsets() (for many points).
     std::optional<Vec3> nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon = 0.0f) const;
 
+    // Whether the compact walks are in use (the node tree is a proper tree of bounded depth).
+    bool usesCompactTree() const { return !compact_.empty(); }
+
 private:
+    // The plain walks over bsp::Node / bsp::Plane, for trees that fail the construction-time check
+    // (cycles, shared subtrees, very deep paths).
+    int referenceLeafForPoint(Vec3 point) const;
+    bool referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const;
+
+    // A node with its plane inline, 32 bytes, stored depth-first (front child first) so a walk
+    // mostly moves forward in memory. Walks keep a point as the doubles {x, y, z, -x, -y, -z}:
+    // `axis` 0..5 marks a plane whose normal is exactly +1 (0..2) or -1 (3..5) on one axis and 0
+    // elsewhere, whose distance is then p[axis] - dist, bit-identical to the full dot product in
+    // double (the other products are zeros and the sums exact); 6 marks any other plane.
+    struct CompactNode {
+        double dist;
+        float normal[3];
+        int32_t axis;
+        int32_t children[2];  // >= 0 node, < 0 leaf -1 - child (validated); segment nodes: see below
+    };
+    // The segment walk's tree leaves out every subtree that is all open (no leaf outside every
+    // cluster) or all solid: its children are nodes or these, and the walk knows the answer there.
+    static constexpr int32_t kOpenSubtree = -1, kSolidSubtree = -2;
+    static constexpr int kMaxCompactDepth = 256;  // walk stacks are fixed arrays of this size
+
+    void buildCompactTree();
+    int compactLeafFrom(int node, Vec3 point) const;
+    int clusterInLeaf(int leafNum, Vec3 point, float epsilon) const;
+
     const bsp::Bsp& bsp_;
     std::vector<uint8_t> opaque_;  // per brush
     int numClusters_ = 0;
     int bytesPerCluster_ = 0;
+    std::vector<CompactNode> compact_;      // empty: use the reference walks
+    std::vector<CompactNode> segmentTree_;  // empty: segmentRoot_ is a sentinel
+    int32_t segmentRoot_ = kOpenSubtree;
+    std::vector<int32_t> leafCluster_;  // per leaf, for the compact walks
 };
 
 // The fixed offsets tried by nudgeOutOfSolid: every lattice point k*step (|k| <= radius/step per

@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cmath>
 #include <cstring>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "bsp_tree.h"
 #include "test_data.h"
@@ -71,6 +75,35 @@ TEST(BspTreeRealData, VisibilityMatchesTheLumpBits) {
         }
     EXPECT_GT(visible, header[0]);
     EXPECT_LT(visible, header[0] * header[0]);
+}
+
+TEST(BspTreeRealData, CompactWalksMatchThePlainOnes) {
+    for (const std::string name : {"oa_dm4", "oacmpdm1"}) {
+        const bsp::Bsp b = bsp::readBsp(test::realBsp(name));
+        const BspTree compact(b), plain(b, {}, false);
+        ASSERT_TRUE(compact.usesCompactTree()) << name;
+        const bsp::Model& world = b.models[0];
+        std::mt19937 rng(7);
+        auto coord = [&](int axis) {
+            const float t = std::uniform_real_distribution<float>(-0.1f, 1.1f)(rng);
+            // Every third coordinate whole: the lattice axial planes sit on.
+            const float v = world.mins[axis] + t * (world.maxs[axis] - world.mins[axis]);
+            return rng() % 3 == 0 ? std::round(v) : v;
+        };
+        const std::vector<Vec3> box = nudgeOffsetsInBox({32, 32, 64}, 4);
+        int solid = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const Vec3 p{coord(0), coord(1), coord(2)}, q{coord(0), coord(1), coord(2)};
+            ASSERT_EQ(compact.leafForPoint(p), plain.leafForPoint(p)) << name << " " << i;
+            ASSERT_EQ(compact.clusterForPointExt(p, 0.0f), plain.clusterForPointExt(p, 0.0f));
+            ASSERT_EQ(compact.segmentCrossesSolid(p, q), plain.segmentCrossesSolid(p, q)) << name << " " << i;
+            if (i % 10 == 0 && compact.pointInSolid(p)) {
+                ++solid;
+                ASSERT_EQ(compact.nudgeOutOfSolid(p, box, -0.125f), plain.nudgeOutOfSolid(p, box, -0.125f));
+            }
+        }
+        EXPECT_GT(solid, 50) << name;
+    }
 }
 
 }  // namespace

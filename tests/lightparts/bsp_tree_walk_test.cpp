@@ -1,0 +1,212 @@
+// The compact node walks (leafForPoint, segmentCrossesSolid, nudgeOutOfSolid) against the plain
+// walks over the BSP lumps, on generated trees mixing axial and oblique planes, with points and
+// segments placed on, near and across the planes, and on hostile trees.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "bsp_tree.h"
+
+namespace q3::light {
+namespace {
+
+// A random tree inside [-512, 512]^3: axial planes of both orientations at whole-unit distances
+// (so lattice points land exactly on them), oblique unit-length planes, leafs in clusters 0..3, -1
+// (solid to segments and points) and now and then -2 (not solid to segments, no cluster to
+// points). Every leaf lists every brush: three opaque boxes.
+class RandomTree {
+public:
+    explicit RandomTree(uint32_t seed) : rng_(seed) {
+        bsp::Shader solid{};
+        std::strcpy(solid.name, "textures/test/solid");
+        solid.contentFlags = contents::kSolid;
+        b.shaders = {solid};
+        build(0);
+        const float boxes[3][6] = {{-100, -100, -100, 0, 0, 0}, {32, -64, -8, 96, 64, 8}, {-20, 40, 0, 20, 48, 300}};
+        for (const auto& box : boxes) {
+            const int first = int(b.brushSides.size());
+            for (int axis = 0; axis < 3; ++axis) {
+                float maxN[3] = {0, 0, 0}, minN[3] = {0, 0, 0};
+                maxN[axis] = 1;
+                minN[axis] = -1;
+                b.brushSides.push_back({addPlane(maxN, box[3 + axis]), 0});
+                b.brushSides.push_back({addPlane(minN, -box[axis]), 0});
+            }
+            b.leafBrushes.push_back(int(b.brushes.size()));
+            b.brushes.push_back({first, 6, 0});
+        }
+        for (bsp::Leaf& leaf : b.leafs) leaf.numLeafBrushes = int(b.brushes.size());
+        b.models = {{{-512, -512, -512}, {512, 512, 512}, 0, 0, 0, int(b.brushes.size())}};
+    }
+
+    bsp::Bsp b;
+
+    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng_); }
+    int below(int n) { return int(rng_() % uint32_t(n)); }
+
+private:
+    int addPlane(const float n[3], float dist) {
+        b.planes.push_back({{n[0], n[1], n[2]}, dist});
+        return int(b.planes.size()) - 1;
+    }
+
+    int32_t build(int depth) {
+        if (depth >= 9 || (depth >= 3 && below(4) == 0)) {
+            const int roll = below(10);
+            const int cluster = roll < 3 ? -1 : roll == 3 ? -2 : below(4);
+            b.leafs.push_back({cluster, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0});
+            return -int32_t(b.leafs.size());
+        }
+        float n[3] = {0, 0, 0};
+        float dist;
+        if (below(3) != 0) {
+            n[below(3)] = below(2) ? 1.0f : -1.0f;
+            dist = float(below(257) - 128);
+        } else {
+            const float v[3] = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+            const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            for (int k = 0; k < 3; ++k) n[k] = len > 0 ? v[k] / len : (k == 2 ? 1.0f : 0.0f);
+            dist = uniform(-100, 100);
+        }
+        const int node = int(b.nodes.size());
+        b.nodes.push_back({addPlane(n, dist), {0, 0}, {0, 0, 0}, {0, 0, 0}});
+        const int32_t front = build(depth + 1);
+        const int32_t back = build(depth + 1);
+        b.nodes[size_t(node)].children[0] = front;
+        b.nodes[size_t(node)].children[1] = back;
+        return node;
+    }
+
+    std::mt19937 rng_;
+};
+
+// Points on, just within and just beyond 0.1 of the generator's planes, plus lattice and random
+// points.
+std::vector<Vec3> probePoints(RandomTree& t) {
+    std::vector<Vec3> points;
+    for (int i = 0; i < 3000; ++i) {
+        Vec3 p{t.uniform(-300, 300), t.uniform(-300, 300), t.uniform(-300, 300)};
+        if (i % 3 == 0) p = Vec3{float(t.below(257) - 128), float(t.below(257) - 128), float(t.below(257) - 128)};
+        if (i % 5 == 1) {
+            const bsp::Plane& plane = t.b.planes[size_t(t.below(int(t.b.planes.size())))];
+            const float offsets[] = {0.0f, 0.05f, -0.05f, 0.1f, -0.1f, 0.1000001f, -0.1000001f, 0.0999999f};
+            const float o = offsets[t.below(8)];
+            const double d = double(plane.normal[0]) * p.x + double(plane.normal[1]) * p.y +
+                             double(plane.normal[2]) * p.z - double(plane.dist);
+            for (int k = 0; k < 3; ++k) p[k] = float(double(p[k]) - (d - o) * double(plane.normal[k]));
+        }
+        points.push_back(p);
+    }
+    return points;
+}
+
+TEST(BspTreeWalk, CompactWalksMatchThePlainOnes) {
+    for (uint32_t seed = 1; seed <= 12; ++seed) {
+        RandomTree t(seed);
+        const BspTree compact(t.b), plain(t.b, {}, false);
+        ASSERT_TRUE(compact.usesCompactTree());
+        ASSERT_FALSE(plain.usesCompactTree());
+        const std::vector<Vec3> points = probePoints(t);
+        for (size_t i = 0; i < points.size(); ++i) {
+            const Vec3 p = points[i];
+            ASSERT_EQ(compact.leafForPoint(p), plain.leafForPoint(p)) << seed << " " << i;
+            ASSERT_EQ(compact.clusterForPointExt(p, -0.125f), plain.clusterForPointExt(p, -0.125f));
+            const Vec3 q = points[(i * 7 + 3) % points.size()];
+            ASSERT_EQ(compact.segmentCrossesSolid(p, q), plain.segmentCrossesSolid(p, q)) << seed << " " << i;
+            // Axis-parallel segments run inside an axial plane when p lies on one.
+            const Vec3 r{p.x, p.y, q.z};
+            ASSERT_EQ(compact.segmentCrossesSolid(p, r), plain.segmentCrossesSolid(p, r));
+            ASSERT_EQ(compact.segmentCrossesSolid(p, p), plain.segmentCrossesSolid(p, p));
+        }
+    }
+}
+
+TEST(BspTreeWalk, NudgeSearchMatchesThePlainOne) {
+    const std::vector<Vec3> box = nudgeOffsetsInBox({32, 32, 64}, 4);
+    const std::vector<Vec3> small = nudgeOffsets(2.0f, 1.0f);
+    const std::vector<Vec3> tiny = nudgeOffsets(0.04f, 0.02f);  // often entirely inside one leaf
+    int found = 0, missed = 0;
+    for (uint32_t seed = 1; seed <= 6; ++seed) {
+        RandomTree t(seed);
+        const BspTree compact(t.b), plain(t.b, {}, false);
+        const std::vector<Vec3> points = probePoints(t);
+        for (size_t i = 0; i < points.size(); i += 3) {
+            for (const auto* offsets : {&box, &small, &tiny}) {
+                for (const float epsilon : {0.0f, -0.125f}) {
+                    const auto a = compact.nudgeOutOfSolid(points[i], *offsets, epsilon);
+                    const auto b = plain.nudgeOutOfSolid(points[i], *offsets, epsilon);
+                    ASSERT_EQ(a.has_value(), b.has_value()) << seed << " " << i;
+                    if (a) {
+                        EXPECT_EQ(*a, *b);
+                    }
+                    (a ? found : missed) += 1;
+                }
+            }
+        }
+    }
+    // Both outcomes are exercised.
+    EXPECT_GT(found, 100);
+    EXPECT_GT(missed, 100);
+}
+
+TEST(BspTreeWalk, NudgeSearchInsideOneSolidLeafEndsAtOnce) {
+    // Root splits at x = 0: front leaf open, back leaf outside every cluster. All candidates well
+    // behind the plane share the solid leaf; one straddling the plane still finds the front.
+    bsp::Bsp b;
+    b.planes = {{{1, 0, 0}, 0}};
+    b.nodes = {{0, {-1, -2}, {0, 0, 0}, {0, 0, 0}}};
+    b.leafs = {{0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, {-1, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
+    const BspTree tree(b);
+    const auto offsets = nudgeOffsets(4.0f, 1.0f);
+    EXPECT_FALSE(tree.nudgeOutOfSolid({-10, 0, 0}, offsets).has_value());
+    EXPECT_EQ(*tree.nudgeOutOfSolid({-4.0625f, 0, 0}, offsets), (Vec3{-0.0625f, 0, 0}));
+    EXPECT_EQ(*tree.nudgeOutOfSolid({10, 0, 0}, offsets), (Vec3{10, 0, 0}));
+}
+
+TEST(BspTreeWalk, HostileTreesKeepThePlainWalks) {
+    bsp::Bsp b;
+    b.planes = {{{1, 0, 0}, 0}, {{0, 1, 0}, 0}};
+    b.nodes = {{0, {1, -2}, {0, 0, 0}, {0, 0, 0}}, {1, {-1, -2}, {0, 0, 0}, {0, 0, 0}}};
+    b.leafs = {{0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, {-1, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
+    EXPECT_TRUE(BspTree(b).usesCompactTree());
+    EXPECT_EQ(BspTree(b).leafForPoint({5, 5, 0}), 0);
+
+    bsp::Bsp cycle = b;  // node 1 leads back to the root
+    cycle.nodes[1].children[0] = 0;
+    const BspTree cyclic(cycle);
+    EXPECT_FALSE(cyclic.usesCompactTree());
+    EXPECT_EQ(cyclic.leafForPoint({5, -5, 0}), 1);
+    EXPECT_EQ(cyclic.leafForPoint({5, 5, 0}), -1);  // the walk ends instead of looping
+    EXPECT_EQ(cyclic.leafForPoint({0, 0, 0}), 1);  // on both planes: every branch ends
+    EXPECT_FALSE(cyclic.segmentCrossesSolid({5, 5, 0}, {6, 6, 0}));
+
+    bsp::Bsp shared = b;  // both children of the root are node 1
+    shared.nodes[0].children[1] = 1;
+    EXPECT_FALSE(BspTree(shared).usesCompactTree());
+    EXPECT_EQ(BspTree(shared).leafForPoint({-5, 5, 0}), 0);
+
+    for (const int32_t bad : {7, -9, std::numeric_limits<int32_t>::min()}) {
+        bsp::Bsp broken = b;
+        broken.nodes[1].children[0] = bad;
+        const BspTree tree(broken);
+        EXPECT_FALSE(tree.usesCompactTree());
+        EXPECT_EQ(tree.leafForPoint({5, -5, 0}), 1);
+        EXPECT_TRUE(tree.segmentCrossesSolid({5, 5, 0}, {5, -5, 0}));  // a missing leaf counts as solid
+    }
+    bsp::Bsp badPlane = b;
+    badPlane.nodes[1].planeNum = 5;
+    EXPECT_FALSE(BspTree(badPlane).usesCompactTree());
+    EXPECT_EQ(BspTree(badPlane).leafForPoint({5, 5, 0}), -1);
+
+    // Coordinates beyond 1e30 take the plain walk too, where 0 * inf stays NaN as it always was.
+    const BspTree tree(b), plain(b, {}, false);
+    const float inf = std::numeric_limits<float>::infinity();
+    for (const Vec3 far : {Vec3{5, inf, 0}, Vec3{-5, 1e35f, 0}, Vec3{3e38f, -3e38f, 0}})
+        EXPECT_EQ(tree.segmentCrossesSolid({5, 5, 0}, far), plain.segmentCrossesSolid({5, 5, 0}, far));
+}
+
+}  // namespace
+}  // namespace q3::light
