@@ -192,6 +192,45 @@ TEST(RadiosityStage, StyledLightBouncesOnlyIntoItsStyle) {
     EXPECT_GT(int(texel[0]), int(texel[2]));  // the floor's colour
 }
 
+// A vertex-lit tile on the floor, one corner (400, 200) in the shadow a 4-unit blocker at z = 8 casts
+// from the spotlight, so the direct pass lights that vertex from a nudged point; a wall at x = 512,
+// lit by the spot, bounces light onto the tile. q3map2 relights vertexes pass by pass, each pass
+// searching for its own lit point: the bounce, which reaches the corner where it stands, must not
+// end the search the direct pass needs. Every vertex keeps at least its direct light.
+TEST(RadiosityStage, BounceOnlyAddsToVertexLight) {
+    bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/vertex"});
+    quality::addQuad(b, {0, 0, 0}, {0, kRoom, 0}, {kRoom, 0, 0}, 0);         // floor, normal +z
+    quality::addQuad(b, {kRoom, 0, 0}, {0, kRoom, 0}, {0, 0, kHeight}, 1);   // wall, normal -x
+    quality::addQuad(b, {393.5f, 199.75f, 8}, {4, 0, 0}, {0, 4, 0}, 1);     // blocker, normal -z
+    quality::addQuad(b, {400, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 2);        // tile, normal +z
+    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;
+    const size_t tile = b.surfaces.size() - 1;
+    quality::finish(b, {});
+    std::vector<bsp::Entity> ents = bsp::parseEntities(b.entities, "vertexbounce");
+    bsp::Entity spot, target;
+    spot.pairs = {{"classname", "light"}, {"origin", "256 256 240"}, {"light", "900"}, {"target", "down"},
+                  {"radius", "600"}};
+    target.pairs = {{"classname", "info_null"}, {"origin", "256 256 0"}, {"targetname", "down"}};
+    ents.push_back(spot);
+    ents.push_back(target);
+    b.entities = bsp::unparseEntities(ents);
+    const auto path =
+        quality::writeScene(b, "vertexbounce", "textures/test/vertex\n{\n\tsurfaceparm nolightmap\n}\n");
+    ASSERT_EQ(quality::runLight(path, {}), 0);
+    const bsp::Bsp direct = bsp::readBsp(path);
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, {"-bounce", "1"}), 0);
+    const bsp::Bsp bounced = bsp::readBsp(path);
+    const bsp::Surface& s = bounced.surfaces[tile];
+    ASSERT_LT(s.lightmapNum, 0);
+    for (int v = 0; v < s.numVerts; ++v) {
+        const size_t i = static_cast<size_t>(s.firstVert + v);
+        EXPECT_GT(direct.drawVerts[i].color[0], 50) << "vertex " << v;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_GE(bounced.drawVerts[i].color[c], direct.drawVerts[i].color[c]) << "vertex " << v;
+    }
+}
+
 // Sum of the legacy grid bytes, and the SH irradiance towards +z (what faces the ceiling).
 struct GridTotals {
     long legacy = 0;
