@@ -97,13 +97,7 @@ std::vector<Light> BouncePasses::emitters(const std::vector<SurfaceLight>& previ
     settings.fast = ctx_.options.fastBounce || ctx_.options.fast || ctx_.options.faster;
     settings.noStyles = ctx_.options.noStyles;
     std::vector<Light> lights = createBounceLights(surfaces, settings);
-    for (Light& light : lights) {
-        orientWinding(light);
-        // The -fast cut compares what a sample receives with the tolerance; an emitter's colour is
-        // its reflected light (well below 1), so the cut is taken on add * colour, not on add alone.
-        const float strength = maxComponent(light.color);
-        if (strength > 0 && strength < 1) light.falloffTolerance /= strength;
-    }
+    for (Light& light : lights) orientWinding(light);
     const int inSolid = assignLightClusters(ctx_, lights);
     log_.info(strCat("bounce ", bounce, ": ", lights.size(), " diffuse lights from ", surfaces.size(),
                      " surfaces", inSolid > 0 ? strCat(" (", inSolid, " in solid removed)") : std::string()));

@@ -113,7 +113,8 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     phase("vertex light");
     lightVertexes(ctx, log);  // also from the radiosity emitters, ctx.bounceLights
     // The grids light from ctx.lights: with -bouncegrid it gains the radiosity emitters.
-    if (options.bounceGrid) ctx.lights.insert(ctx.lights.end(), ctx.bounceLights.begin(), ctx.bounceLights.end());
+    if (options.bounceGrid)
+        for (const std::vector<Light>& pass : ctx.bounceLights) ctx.lights.insert(ctx.lights.end(), pass.begin(), pass.end());
     // The SH grid (SetupGridSH / TraceGridSH) runs beside the legacy grid from the same light list.
     if (!options.noGrid) {
         phase("light grid");

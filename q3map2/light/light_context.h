@@ -66,7 +66,7 @@ struct LightContext {
     SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
     std::unique_ptr<TraceScene> scene;
     std::vector<Light> lights;
-    std::vector<Light> bounceLights;     // -bounce: the emitters of every radiosity pass
+    std::vector<std::vector<Light>> bounceLights;  // -bounce: the emitters of each radiosity pass
     // Floodlight and dirt (luxel_passes.h), prepared once by the stage for lightmaps and vertexes;
     // null when neither is in use.
     std::unique_ptr<LuxelPasses> luxelPasses;

@@ -194,8 +194,7 @@ void lightLightmaps(LightContext& ctx, Log& log) {
             }
             pass = lightPass(ctx, surfaces, layoutOptions, nullptr, SurfacePass{emitters, false, deluxe}, log);
             addPass(total, pass);
-            ctx.bounceLights.insert(ctx.bounceLights.end(), std::make_move_iterator(emitters.begin()),
-                                    std::make_move_iterator(emitters.end()));
+            ctx.bounceLights.push_back(std::move(emitters));
         }
     }
 

@@ -31,6 +31,7 @@ struct VertexTracer {
     const LightingEnv& env;
     std::span<const int> clusters;  // the surface's clusters: a sample point must see one of them
     std::span<const Light* const> lights;  // the lights whose envelope reaches the surface's vertexes
+    Vec3 ambient;  // the world ambient in the direct pass; radiosity passes add none
     bool twoSided = false;
     bool forceSunlight = false;
     // -dirty: q3map2 darkens each traced vertex by the dirt at the position it was lit from (no
@@ -47,7 +48,7 @@ struct VertexTracer {
         LightingEnv unoccluded = env;
         unoccluded.scene = nullptr;
         const SamplePoint p{origin, normal, ctx.tree && !ctx.bsp.nodes.empty() ? cluster : -1, twoSided};
-        Vec3 color = ctx.world.ambient;
+        Vec3 color = ambient;
         for (const Light* light : lights) {
             const bool open = forceSunlight && light->type == LightType::Sun;
             std::optional<LightContribution> c = lightToSample(*light, p, open ? unoccluded : env);
@@ -66,7 +67,7 @@ struct VertexTracer {
     std::optional<Vec3> trace(Vec3 xyz, Vec3 normal) const {
         std::optional<Vec3> color;
         if (const int cluster = freeCluster(xyz); cluster >= 0) color = lightAt(xyz, normal, cluster);
-        if (color && brighterThan(*color, ctx.world.ambient)) return color;
+        if (color && brighterThan(*color, ambient)) return color;
         for (int x : kNudgeSteps)
             for (int y : kNudgeSteps)
                 for (int z : kNudgeSteps) {
@@ -74,7 +75,7 @@ struct VertexTracer {
                     const int cluster = freeCluster(origin);
                     if (cluster < 0) continue;
                     color = lightAt(origin, normal, cluster);
-                    if (brighterThan(*color, ctx.world.ambient)) return color;
+                    if (brighterThan(*color, ambient)) return color;
                 }
         return color;
     }
@@ -100,10 +101,10 @@ void lightVertexes(LightContext& ctx, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
     const LuxelPasses* passes = ctx.luxelPasses && ctx.luxelPasses->dirty ? ctx.luxelPasses.get() : nullptr;
     std::vector<uint64_t> counts(bsp.surfaces.size(), 0);
-    const std::array<std::span<const Light>, 2> lightLists{std::span<const Light>(ctx.lights),
-                                                           std::span<const Light>(ctx.bounceLights)};
-    const std::array<std::vector<float>, 2> envelopes{lightEnvelopes(lightLists[0], env.settings.forceFast),
-                                                      lightEnvelopes(lightLists[1], env.settings.forceFast)};
+    // Each pass's light envelopes, once for all surfaces: [0] the direct lights, then each bounce.
+    std::vector<std::vector<float>> envelopes{lightEnvelopes(ctx.lights, env.settings.forceFast)};
+    for (const std::vector<Light>& bounced : ctx.bounceLights)
+        envelopes.push_back(lightEnvelopes(bounced, env.settings.forceFast));
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const bsp::Surface& s = bsp.surfaces[i];
@@ -114,43 +115,49 @@ void lightVertexes(LightContext& ctx, Log& log) {
             const Vec3 offset = ctx.surfaceOffsets[i];
             const LightingEnv surfaceEnv = receiverLightingEnv(ctx, env, static_cast<int>(i));
             const std::vector<int>& clusters = ctx.surfaceClusters[i];
-            // Vertex-lit surfaces receive every radiosity pass (as q3map2 relights vertices each
-            // bounce). Lights whose envelope misses every position the search may try are skipped.
             Bounds reach;
             for (int v = 0; v < s.numVerts; ++v)
                 reach.add(Vec3::fromArray(bsp.drawVerts[static_cast<size_t>(s.firstVert + v)].xyz) + offset);
             reach.mins -= Vec3::splat(2 * kVertexNudge);
             reach.maxs += Vec3::splat(2 * kVertexNudge);
-            std::vector<const Light*> reaching;
-            for (size_t list = 0; list < lightLists.size(); ++list)
-                for (size_t k = 0; k < lightLists[list].size(); ++k)
-                    if (lightReachesBounds(lightLists[list][k], reach, envelopes[list][k]))
-                        reaching.push_back(&lightLists[list][k]);
             const bool dirty = passes && !passes->noDirty[static_cast<size_t>(s.shaderNum)];
-            const VertexTracer tracer{ctx,           surfaceEnv, clusters, reaching, shader.twoSided, shader.forceSunlight,
-                                      dirty ? passes : nullptr};
-            // Traced vertexes first; those whose every position was in solid take the mean of the
-            // lit ones (the ambient light when none is).
-            std::vector<std::optional<Vec3>> traced(size_t(std::max(0, s.numVerts)));
-            Vec3 litSum;
-            int litCount = 0;
-            for (int v = 0; v < s.numVerts; ++v) {
-                const size_t vi = static_cast<size_t>(s.firstVert + v);
-                if (ctx.vertexFromLightmap[vi]) continue;
-                const bsp::DrawVert& dv = bsp.drawVerts[vi];
-                const Vec3 normal =
-                    normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi] : Vec3::fromArray(dv.normal));
-                traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
-                if (traced[size_t(v)] && brighterThan(*traced[size_t(v)], ctx.world.ambient)) {
-                    litSum += *traced[size_t(v)];
-                    ++litCount;
+            // q3map2 relights vertexes after the direct pass and after each bounce, and adds the
+            // passes up: each pass searches for its own lit position (a vertex the direct light
+            // reaches only from a nudged point still takes the bounce where it stands).
+            std::vector<Vec3> lit(size_t(std::max(0, s.numVerts)));
+            auto addPass = [&](std::span<const Light> passLights, std::span<const float> passEnvelopes, Vec3 ambient) {
+                // Lights whose envelope misses every position the search may try are skipped.
+                std::vector<const Light*> reaching;
+                for (size_t k = 0; k < passLights.size(); ++k)
+                    if (lightReachesBounds(passLights[k], reach, passEnvelopes[k])) reaching.push_back(&passLights[k]);
+                const VertexTracer tracer{ctx,     surfaceEnv,      clusters,           reaching,
+                                          ambient, shader.twoSided, shader.forceSunlight, dirty ? passes : nullptr};
+                // Traced vertexes first; those whose every position was in solid take the mean of
+                // the lit ones (the pass's ambient light when none is).
+                std::vector<std::optional<Vec3>> traced(lit.size());
+                Vec3 litSum;
+                int litCount = 0;
+                for (int v = 0; v < s.numVerts; ++v) {
+                    const size_t vi = static_cast<size_t>(s.firstVert + v);
+                    if (ctx.vertexFromLightmap[vi]) continue;
+                    const bsp::DrawVert& dv = bsp.drawVerts[vi];
+                    const Vec3 normal = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
+                                                                                : Vec3::fromArray(dv.normal));
+                    traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
+                    if (traced[size_t(v)] && brighterThan(*traced[size_t(v)], ambient)) {
+                        litSum += *traced[size_t(v)];
+                        ++litCount;
+                    }
                 }
-            }
-            const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ctx.world.ambient;
+                const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ambient;
+                for (size_t v = 0; v < lit.size(); ++v) lit[v] += traced[v].value_or(fallback);
+            };
+            addPass(ctx.lights, envelopes[0], ctx.world.ambient);
+            for (size_t b = 0; b < ctx.bounceLights.size(); ++b) addPass(ctx.bounceLights[b], envelopes[b + 1], Vec3{});
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];
-                Vec3 color = ctx.vertexFromLightmap[vi] ? ctx.vertexLight[vi] : traced[size_t(v)].value_or(fallback);
+                Vec3 color = ctx.vertexFromLightmap[vi] ? ctx.vertexLight[vi] : lit[size_t(v)];
                 color = vmax(color, ctx.world.minVertexLight);
                 const Rgb8 bytes = colorToBytes(color, o.vertexScale * shader.vertexScale, ctx.color);
                 dv.color[0] = bytes[0];

@@ -33,14 +33,15 @@ std::vector<uint8_t> solidTga(uint8_t r, uint8_t g, uint8_t b) {
 
 // Floor (textured 200/100/50) at z = 0 facing up, ceiling at z = 256 facing down, a spotlight under
 // the ceiling pointing at the floor: the ceiling is behind the spot and gets no direct light.
-std::filesystem::path roomScene(const std::string& name, const std::string& spotStyle = "") {
+std::filesystem::path roomScene(const std::string& name, const std::string& spotStyle = "",
+                                const std::string& spotLight = "900", const std::string& floorDirectives = "") {
     bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/ceiling"});
     quality::addQuad(b, {0, 0, 0}, {0, kRoom, 0}, {kRoom, 0, 0}, 0);           // normal +z
     quality::addQuad(b, {0, 0, kHeight}, {kRoom, 0, 0}, {0, kRoom, 0}, 1);     // normal -z
     quality::finish(b, {});
     std::vector<bsp::Entity> ents = bsp::parseEntities(b.entities, name);
     bsp::Entity spot;
-    spot.pairs = {{"classname", "light"}, {"origin", "256 256 240"}, {"light", "900"}, {"target", "down"},
+    spot.pairs = {{"classname", "light"}, {"origin", "256 256 240"}, {"light", spotLight}, {"target", "down"},
                   {"radius", "600"}};
     if (!spotStyle.empty()) spot.pairs.push_back({"_style", spotStyle});
     bsp::Entity target;
@@ -49,7 +50,8 @@ std::filesystem::path roomScene(const std::string& name, const std::string& spot
     ents.push_back(target);
     b.entities = bsp::unparseEntities(ents);
     const auto path = quality::writeScene(b, name,
-                                          "textures/test/floor\n{\n\tqer_editorimage textures/test/floor.tga\n}\n");
+                                          "textures/test/floor\n{\n\tqer_editorimage textures/test/floor.tga\n" +
+                                              floorDirectives + "}\n");
     std::filesystem::create_directories(path.parent_path().parent_path() / "textures" / "test");
     writeFileAtomic(path.parent_path().parent_path() / "textures" / "test" / "floor.tga", solidTga(200, 100, 50));
     return path;
@@ -89,8 +91,9 @@ struct RoomRun {
     Vec3 ceilingCentre;
 };
 
-RoomRun lightRoom(const std::string& name, const std::vector<std::string>& args) {
-    const auto path = roomScene(name);
+RoomRun lightRoom(const std::string& name, const std::vector<std::string>& args,
+                  const std::string& spotLight = "900", const std::string& floorDirectives = "") {
+    const auto path = roomScene(name, "", spotLight, floorDirectives);
     EXPECT_EQ(quality::runLight(path, args), 0);
     RoomRun run{bsp::readBsp(path), {}};
     const auto c = quality::luxelNear(run.bsp, 1, {256, 256, kHeight});
@@ -117,6 +120,23 @@ TEST(RadiosityStage, FloorBouncesItsColourOntoCeilingByFormFactor) {
     // The floor's colour: red twice green, green twice blue (within rounding of small values).
     EXPECT_NEAR(got.x / std::max(1.0f, got.y), 2.0f, 0.3f);
     EXPECT_GT(got.y, got.z);
+}
+
+// -fast cuts a contribution whose form factor times the emitter's add is at or below the falloff
+// tolerance; q3map2 leaves the emitter's colour (the reflected light, well below 1) out of that
+// test. A dim floor chopped into 16-unit pieces: each piece gives the ceiling well under one unit
+// (add * factor * colour < 1, which a cut on the coloured value would drop, leaving it black) while
+// add * factor passes over most of the floor, so the fast run keeps nearly the exact run's light.
+TEST(RadiosityStage, FastBounceCutsOnTheFormFactorNotTheColour) {
+    const std::vector<std::string> common = {"-bounce", "1", "-bouncescale", "32"};
+    std::vector<std::string> fastArgs = common;
+    fastArgs.push_back("-fast");
+    const std::string smallPieces = "\tq3map_lightSubdivide 16\n";
+    const RoomRun exact = lightRoom("fastcut0", common, "100", smallPieces);
+    const RoomRun fast = lightRoom("fastcut1", fastArgs, "100", smallPieces);
+    ASSERT_GT(exact.ceilingCentre.x, 40);
+    EXPECT_NEAR(fast.ceilingCentre.x, exact.ceilingCentre.x, 0.1f * exact.ceilingCentre.x);
+    EXPECT_NEAR(fast.ceilingCentre.y, exact.ceilingCentre.y, 0.1f * exact.ceilingCentre.y + 1);
 }
 
 TEST(RadiosityStage, BounceScaleMultipliesAndBounceOnlyDropsDirectLight) {
@@ -170,6 +190,45 @@ TEST(RadiosityStage, StyledLightBouncesOnlyIntoItsStyle) {
     const uint8_t* texel = &picture.rgba[(size_t(y) * size_t(picture.width) + size_t(x)) * 4];
     EXPECT_GT(int(texel[0]), 5);
     EXPECT_GT(int(texel[0]), int(texel[2]));  // the floor's colour
+}
+
+// A vertex-lit tile on the floor, one corner (400, 200) in the shadow a 4-unit blocker at z = 8 casts
+// from the spotlight, so the direct pass lights that vertex from a nudged point; a wall at x = 512,
+// lit by the spot, bounces light onto the tile. q3map2 relights vertexes pass by pass, each pass
+// searching for its own lit point: the bounce, which reaches the corner where it stands, must not
+// end the search the direct pass needs. Every vertex keeps at least its direct light.
+TEST(RadiosityStage, BounceOnlyAddsToVertexLight) {
+    bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/vertex"});
+    quality::addQuad(b, {0, 0, 0}, {0, kRoom, 0}, {kRoom, 0, 0}, 0);         // floor, normal +z
+    quality::addQuad(b, {kRoom, 0, 0}, {0, kRoom, 0}, {0, 0, kHeight}, 1);   // wall, normal -x
+    quality::addQuad(b, {393.5f, 199.75f, 8}, {4, 0, 0}, {0, 4, 0}, 1);     // blocker, normal -z
+    quality::addQuad(b, {400, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 2);        // tile, normal +z
+    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;
+    const size_t tile = b.surfaces.size() - 1;
+    quality::finish(b, {});
+    std::vector<bsp::Entity> ents = bsp::parseEntities(b.entities, "vertexbounce");
+    bsp::Entity spot, target;
+    spot.pairs = {{"classname", "light"}, {"origin", "256 256 240"}, {"light", "900"}, {"target", "down"},
+                  {"radius", "600"}};
+    target.pairs = {{"classname", "info_null"}, {"origin", "256 256 0"}, {"targetname", "down"}};
+    ents.push_back(spot);
+    ents.push_back(target);
+    b.entities = bsp::unparseEntities(ents);
+    const auto path =
+        quality::writeScene(b, "vertexbounce", "textures/test/vertex\n{\n\tsurfaceparm nolightmap\n}\n");
+    ASSERT_EQ(quality::runLight(path, {}), 0);
+    const bsp::Bsp direct = bsp::readBsp(path);
+    writeFileAtomic(path, bsp::serializeBsp(b));
+    ASSERT_EQ(quality::runLight(path, {"-bounce", "1"}), 0);
+    const bsp::Bsp bounced = bsp::readBsp(path);
+    const bsp::Surface& s = bounced.surfaces[tile];
+    ASSERT_LT(s.lightmapNum, 0);
+    for (int v = 0; v < s.numVerts; ++v) {
+        const size_t i = static_cast<size_t>(s.firstVert + v);
+        EXPECT_GT(direct.drawVerts[i].color[0], 50) << "vertex " << v;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_GE(bounced.drawVerts[i].color[c], direct.drawVerts[i].color[c]) << "vertex " << v;
+    }
 }
 
 // Sum of the legacy grid bytes, and the SH irradiance towards +z (what faces the ceiling).
