@@ -316,6 +316,33 @@ TEST(DirtStage, VertexLitSurfaceIsDarkenedNearTheWall) {
     }
 }
 
+TEST(DirtStage, VertexDirtIsTakenAtTheVertexNotWhereTheSearchEnds) {
+    // Ambient light only: a darkened vertex is never brighter than the ambient, so the search tries
+    // every nudged position and keeps the last; the dirt is still the one at the vertex itself.
+    bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/sky", "textures/test/vertex"});
+    quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);
+    quality::addQuad(b, {0, 0, 0}, {0, 0, 256}, {0, 512, 0}, 1);
+    quality::addQuad(b, {512, 0, 0}, {0, 512, 0}, {0, 0, 256}, 2);
+    quality::addQuad(b, {2, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 3);
+    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;
+    quality::finish(b, {{"_ambient", "100"}});
+    const auto path = quality::writeScene(b, "vertexdirtorigin", kShaders);
+    ASSERT_EQ(quality::runLight(path, {"-dirty"}), 0);
+    const bsp::Bsp dirty = bsp::readBsp(path);
+    HitScene scene(cornerScene(), {});
+    const bsp::Surface& s = dirty.surfaces[3];
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = dirty.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        const Vec3 xyz = Vec3::fromArray(dv.xyz);
+        const float atVertex = dirtForSample(xyz, {0, 0, 1}, scene, DirtSettings{}, dirtSeed(xyz));
+        EXPECT_NEAR(dv.color[0], 100 * atVertex, 1.0f) << "vertex " << v;
+        if (xyz.x < 10) {  // by the wall the last nudged position (8 units further on each axis) differs
+            const Vec3 last = xyz + Vec3{8, 8, 8};
+            EXPECT_GT(dirtForSample(last, {0, 0, 1}, scene, DirtSettings{}, dirtSeed(last)), atVertex + 0.02f);
+        }
+    }
+}
+
 TEST(DirtStage, NoDirtyShaderKeepsItsLight) {
     const bsp::Bsp b = cornerBsp("textures/test/clean");
     const auto corner = quality::luxelNear(b, 0, {16, 256, 0});
