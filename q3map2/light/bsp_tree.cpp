@@ -195,21 +195,28 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
 }
 
 bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
-    if (bsp_.nodes.empty()) return false;
+    return segmentSolidEntry(from, to).has_value();
+}
+
+// The reference walk, near side first, so that the first solid leaf it meets is where the segment
+// enters solid.
+std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
+    if (bsp_.nodes.empty()) return std::nullopt;
     constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
     struct Local {
         const BspTree& tree;
-        bool crosses(int node, Vec3 start, Vec3 end, int depth) const {
+        std::optional<Vec3> entry(int node, Vec3 start, Vec3 end, int depth) const {
             const bsp::Bsp& bsp = tree.bsp_;
             // Recursion only splits; the near side is walked first, the far side continues the loop.
             while (true) {
                 if (node < 0) {
                     const int leaf = -(node + 1);
-                    return leaf >= int(bsp.leafs.size()) || bsp.leafs[size_t(leaf)].cluster == -1;
+                    const bool solid = leaf >= int(bsp.leafs.size()) || bsp.leafs[size_t(leaf)].cluster == -1;
+                    return solid ? std::optional<Vec3>(start) : std::nullopt;
                 }
-                if (node >= int(bsp.nodes.size()) || depth > 4096) return false;  // hostile trees
+                if (node >= int(bsp.nodes.size()) || depth > 4096) return std::nullopt;  // hostile trees
                 const bsp::Node& n = bsp.nodes[size_t(node)];
-                if (n.planeNum < 0 || n.planeNum >= int(bsp.planes.size())) return false;
+                if (n.planeNum < 0 || n.planeNum >= int(bsp.planes.size())) return std::nullopt;
                 const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
                 const double front = planeDistance(plane, start), back = planeDistance(plane, end);
                 if (front >= -kOnEpsilon && back >= -kOnEpsilon) {
@@ -220,7 +227,7 @@ bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
                     const int side = front < 0 ? 1 : 0;
                     const float frac = float(front / (front - back));
                     const Vec3 mid = start + (end - start) * frac;
-                    if (crosses(n.children[side], start, mid, depth + 1)) return true;
+                    if (std::optional<Vec3> hit = entry(n.children[side], start, mid, depth + 1)) return hit;
                     node = n.children[1 - side];
                     start = mid;
                 }
@@ -228,7 +235,7 @@ bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
             }
         }
     };
-    return Local{*this}.crosses(0, from, to, 0);
+    return Local{*this}.entry(0, from, to, 0);
 }
 
 int BspTree::compactLeafFrom(int node, Vec3 point) const {

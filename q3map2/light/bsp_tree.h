@@ -66,6 +66,9 @@ public:
     // front to back through the node tree with q3map2's 0.1-unit on-plane epsilon (its TraceLine_r
     // "passSolid"). Detail brushes, patches and models do not count. False without a node tree.
     bool segmentCrossesSolid(Vec3 from, Vec3 to) const;
+    // Where the same walk first enters such a leaf (the start of the segment's part inside it; the
+    // hit point q3map2's dirt and floodlight rays measure), nullopt when it enters none.
+    std::optional<Vec3> segmentSolidEntry(Vec3 from, Vec3 to) const;
 
     bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
 

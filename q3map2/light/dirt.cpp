@@ -11,6 +11,8 @@ namespace {
 constexpr int kDirtAzimuthSteps = 16;
 constexpr int kDirtElevationSteps = 3;
 constexpr float kDirtConeDegrees = 88;
+// How far beyond a sky surface the solid behind it may begin (the two coincide on sealed maps).
+constexpr float kSkyEntrySlack = 1.0f;
 }  // namespace
 
 DirtSettings dirtSettingsFromOptions(const LightOptions& options) {
@@ -39,7 +41,7 @@ uint64_t dirtSeed(Vec3 origin) {
 }
 
 float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
-                    float ignoreNear) {
+                    float ignoreNear, const BspTree* tree) {
     Vec3 right, up;
     tangentFrame(normal, right, up);
     const float depth = settings.depth;
@@ -61,10 +63,22 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
     directions.push_back(normal);
     std::vector<RayHit> hits(directions.size());
     scene.nearestMany(origin, directions, ignoreNear, depth, hits);
-    // Only opaque, non-sky surfaces within the depth darken.
     float gathered = 0;
-    for (const RayHit& hit : hits)
-        if (hit.hit && !hit.sky) gathered += 1.0f - hit.distance / depth;
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const RayHit& hit = hits[i];
+        // A ray that enters structural solid stops where it enters, however close (the inhibit
+        // radius only skips surfaces), and before any nearer detail surface it may cross.
+        std::optional<Vec3> solid;
+        if (tree) solid = tree->segmentSolidEntry(origin, origin + directions[i] * depth);
+        if (solid) {
+            const float distance = length(*solid - origin);
+            // Sky faces seal the world with solid behind them: rays that reach sky do not darken.
+            const bool sky = hit.hit && hit.sky && hit.distance <= distance + kSkyEntrySlack;
+            if (!sky) gathered += 1.0f - distance / depth;
+        } else if (hit.hit && !hit.sky) {
+            gathered += 1.0f - hit.distance / depth;
+        }
+    }
     if (gathered <= 0) return 1.0f;
     float dirt = std::min(1.0f, std::pow(gathered / static_cast<float>(cone.size() + 1), settings.gain));
     dirt = std::min(1.0f, dirt * settings.scale);
@@ -72,14 +86,15 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
 }
 
 std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
-                                   const HitScene& scene, const DirtSettings& settings, bool noDirty) {
+                                   const HitScene& scene, const DirtSettings& settings, bool noDirty,
+                                   const BspTree* tree) {
     const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
     std::vector<float> raw(count, 0.0f);
     for (size_t i = 0; i < count && i < points.size(); ++i) {
         if (!points[i]) continue;
         raw[i] = noDirty ? 1.0f
                          : dirtForSample(points[i]->origin, points[i]->normal, scene, settings,
-                                         dirtSeed(points[i]->origin));
+                                         dirtSeed(points[i]->origin), kDirtInhibitRadius, tree);
     }
     // Smoothing reads the unsmoothed factors (q3map2 smooths in place, so its result depends on
     // the scan order; reading a copy keeps the 3x3 mean symmetric).

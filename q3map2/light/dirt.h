@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "bsp_tree.h"
 #include "hit_scene.h"
 #include "light_contribution.h"
 #include "light_options.h"
@@ -30,10 +31,15 @@ DirtSettings dirtSettingsFromOptions(const LightOptions& options);
 // The 48 ordered cone directions around +z (16 azimuths x 3 elevations within 88 degrees).
 const std::vector<Vec3>& dirtConeDirections();
 
+// q3map2's DEFAULT_INHIBIT_RADIUS: dirt rays of luxels and vertexes pass surfaces this close.
+constexpr float kDirtInhibitRadius = 1.5f;
+
 // Dirt factor (0 black .. 1 untouched) of one sample. `seed` drives the random directions of mode 1
 // (the same seed always gives the same directions); surfaces closer than `ignoreNear` do not count.
+// With `tree`, a ray that enters structural solid is stopped where it enters, even within
+// `ignoreNear` and behind nearer surfaces (q3map2 tests the BSP's solid leaves before surfaces).
 float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
-                    float ignoreNear = 0);
+                    float ignoreNear = kDirtInhibitRadius, const BspTree* tree = nullptr);
 
 // Seed of a sample's random directions, from its position (independent of thread scheduling).
 uint64_t dirtSeed(Vec3 origin);
@@ -42,7 +48,8 @@ uint64_t dirtSeed(Vec3 origin);
 // which gets 0). `noDirty` (q3map_noDirty) gives 1 everywhere. Then each mapped luxel takes the mean
 // of itself and its mapped 3x3 neighbours with dirt > 0, as q3map2's smoothing.
 std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
-                                   const HitScene& scene, const DirtSettings& settings, bool noDirty);
+                                   const HitScene& scene, const DirtSettings& settings, bool noDirty,
+                                   const BspTree* tree = nullptr);
 
 // Multiplies every luxel by its dirt (or, with settings.debug, replaces it by dirt * 255 grey).
 void applyDirt(LuxelImage& image, const std::vector<float>& dirt, bool debug);

@@ -34,8 +34,9 @@ struct VertexTracer {
     Vec3 ambient;  // the world ambient in the direct pass; radiosity passes add none
     bool twoSided = false;
     bool forceSunlight = false;
-    // -dirty: q3map2 darkens each traced vertex by the dirt at the position it was lit from (no
-    // smoothing between vertexes, unlike luxels). Null: no dirt on this surface.
+    // -dirty: q3map2 darkens each traced vertex by the dirt at the vertex itself, also when the
+    // light comes from a nudged position (no smoothing between vertexes, unlike luxels). Null: no
+    // dirt on this surface.
     const LuxelPasses* dirt = nullptr;
 
     int freeCluster(Vec3 point) const {
@@ -43,7 +44,12 @@ struct VertexTracer {
         return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, kVertexEpsilon), clusters);
     }
 
-    Vec3 lightAt(Vec3 origin, Vec3 normal, int cluster) const {
+    float dirtAt(Vec3 xyz, Vec3 normal) const {
+        if (!dirt) return 1.0f;
+        return dirtForSample(xyz, normal, *dirt->scene, dirt->dirt, dirtSeed(xyz), env.settings.ignoreNear);
+    }
+
+    Vec3 lightAt(Vec3 origin, Vec3 normal, int cluster, float dirtFactor) const {
         // q3map_forceSunlight: suns reach the vertex without occlusion.
         LightingEnv unoccluded = env;
         unoccluded.scene = nullptr;
@@ -55,9 +61,7 @@ struct VertexTracer {
             if (c && c->style == 0) color += c->color;
             if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) break;
         }
-        if (dirt)
-            color *= dirtForSample(origin, normal, *dirt->scene, dirt->dirt, dirtSeed(origin), env.settings.ignoreNear);
-        return color;
+        return color * dirtFactor;
     }
 
     // q3map2 IlluminateVertexes: the light at the vertex itself; when that is out of the world or no
@@ -66,7 +70,8 @@ struct VertexTracer {
     // was in solid.
     std::optional<Vec3> trace(Vec3 xyz, Vec3 normal) const {
         std::optional<Vec3> color;
-        if (const int cluster = freeCluster(xyz); cluster >= 0) color = lightAt(xyz, normal, cluster);
+        const float dirtFactor = dirtAt(xyz, normal);
+        if (const int cluster = freeCluster(xyz); cluster >= 0) color = lightAt(xyz, normal, cluster, dirtFactor);
         if (color && brighterThan(*color, ambient)) return color;
         for (int x : kNudgeSteps)
             for (int y : kNudgeSteps)
@@ -74,7 +79,7 @@ struct VertexTracer {
                     const Vec3 origin = xyz + Vec3{float(x), float(y), float(z)} * kVertexNudge;
                     const int cluster = freeCluster(origin);
                     if (cluster < 0) continue;
-                    color = lightAt(origin, normal, cluster);
+                    color = lightAt(origin, normal, cluster, dirtFactor);
                     if (brighterThan(*color, ambient)) return color;
                 }
         return color;

@@ -38,6 +38,7 @@ std::unique_ptr<LuxelPasses> prepareLuxelPasses(const LightContext& ctx, Log& lo
     TraceSceneOptions sceneOptions;
     sceneOptions.patchShadows = o.patchShadows;
     passes->scene = std::make_unique<HitScene>(ctx.surfaces, sceneOptions);
+    if (ctx.tree && ctx.tree->hasNodes()) passes->tree = ctx.tree.get();
     return passes;
 }
 
@@ -50,7 +51,8 @@ void applyLuxelPasses(const LuxelPasses& passes, int shaderNum, LuxelImage& imag
                       floodlightForLightmap(points, *passes.scene, *passes.shaderFlood[static_cast<size_t>(shaderNum)]));
     if (passes.dirty) {
         const bool noDirty = known && passes.noDirty[static_cast<size_t>(shaderNum)];
-        applyDirt(image, dirtForLightmap(points, image.width, image.height, *passes.scene, passes.dirt, noDirty),
+        applyDirt(image, dirtForLightmap(points, image.width, image.height, *passes.scene, passes.dirt, noDirty,
+                                         passes.tree),
                   passes.dirt.debug);
     }
 }

@@ -24,6 +24,7 @@ struct LightContext;
 
 struct LuxelPasses {
     std::unique_ptr<HitScene> scene;
+    const BspTree* tree = nullptr;  // structural solid for dirt rays (null: no node tree)
     bool dirty = false;
     DirtSettings dirt;
     std::optional<FloodlightSettings> globalFlood;

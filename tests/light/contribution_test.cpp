@@ -254,7 +254,9 @@ TEST(AreaLight, FormFactorUpperBoundHoldsAndIsUseful) {
         const Vec3 point = Vec3{unit(rng), unit(rng), unit(rng)} * (size * 12);
         const Vec3 normal = randomUnit();
         const EmitterBounds bounds = emitterBounds(winding);
-        if (!bent) ASSERT_TRUE(bounds.flat);
+        if (!bent) {
+            ASSERT_TRUE(bounds.flat);
+        }
         const float exact = std::fabs(pointToPolygonFormFactor(point, normal, winding));
         const float bound = formFactorUpperBound(bounds, point, normal);
         ASSERT_GE(bound, exact) << "trial " << trial;

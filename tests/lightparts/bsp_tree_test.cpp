@@ -124,6 +124,11 @@ TEST(BspTree, SegmentCrossesSolidLeafOnly) {
     EXPECT_TRUE(tree.segmentCrossesSolid({10, 0, 0}, {-0.2f, 0, 0}));
     // Along the plane itself: front side, open.
     EXPECT_FALSE(tree.segmentCrossesSolid({0, -50, 0}, {0, 50, 0}));
+    // Where the segment enters the solid leaf: on the plane, or at its start when it starts inside.
+    EXPECT_EQ(*tree.segmentSolidEntry({10, 0, 0}, {-10, 0, 0}), (Vec3{0, 0, 0}));
+    EXPECT_EQ(*tree.segmentSolidEntry({0, 5, 0}, {-10, 5, 0}), (Vec3{0, 5, 0}));
+    EXPECT_EQ(*tree.segmentSolidEntry({-10, 0, 0}, {10, 0, 0}), (Vec3{-10, 0, 0}));
+    EXPECT_FALSE(tree.segmentSolidEntry({10, 0, 0}, {100, 5, -3}).has_value());
     // With both leafs in clusters only the detail brush is between: nothing solid is crossed.
     EXPECT_FALSE(BspTree(twoLeafBsp()).segmentCrossesSolid({10, 0, 0}, {-100, 0, 0}));
     // No node tree: nothing can be tested, nothing blocks.
