@@ -47,6 +47,22 @@ BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShader
     if (compactWalks) buildCompactTree();
 }
 
+// One step of q3map2's TraceLine at a node: a segment whose ends lie at `front` and `back` from the
+// plane stays on one side within TRACE_ON_EPSILON (`split` false, `side` 0 front, 1 back), or is
+// split at `frac`, its start's side (`side`) walked first.
+struct SegmentStep {
+    bool split = false;
+    int side = 0;
+    float frac = 0;
+};
+
+static SegmentStep segmentStep(double front, double back) {
+    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
+    if (front >= -kOnEpsilon && back >= -kOnEpsilon) return {false, 0, 0};
+    if (front < kOnEpsilon && back < kOnEpsilon) return {false, 1, 0};
+    return {true, front < 0 ? 1 : 0, float(front / (front - back))};
+}
+
 static double planeDistance(const bsp::Plane& plane, Vec3 p) {
     return double(plane.normal[0]) * p.x + double(plane.normal[1]) * p.y + double(plane.normal[2]) * p.z -
            double(plane.dist);
@@ -150,7 +166,6 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
                          std::fabs(from.z) <= kMaxCoord && std::fabs(to.x) <= kMaxCoord &&
                          std::fabs(to.y) <= kMaxCoord && std::fabs(to.z) <= kMaxCoord;
     if (compact_.empty() || !bounded) return referenceSegmentCrossesSolid(from, to);
-    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
     // Far sides still to walk. A push happens at most once per node of the current path, so the
     // validated depth bounds the stack. The answer is a plain "any solid leaf", so the order in
     // which sides are walked only decides how soon a hit ends the walk.
@@ -177,17 +192,13 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
             continue;
         }
         const CompactNode& n = segmentTree_[size_t(node)];
-        const double front = nodeDistance(n, s), back = nodeDistance(n, e);
-        if (front >= -kOnEpsilon && back >= -kOnEpsilon) {
-            node = n.children[0];
-        } else if (front < kOnEpsilon && back < kOnEpsilon) {
-            node = n.children[1];
+        const SegmentStep step = segmentStep(nodeDistance(n, s), nodeDistance(n, e));
+        if (!step.split) {
+            node = n.children[step.side];
         } else {
-            const int side = front < 0 ? 1 : 0;
-            const float frac = float(front / (front - back));
-            const Vec3 mid = start + (end - start) * frac;
-            stack[top++] = Pending{n.children[1 - side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
-            node = n.children[side];
+            const Vec3 mid = start + (end - start) * step.frac;
+            stack[top++] = Pending{n.children[1 - step.side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
+            node = n.children[step.side];
             end = mid;
             e = WalkPoint(mid);
         }
@@ -202,7 +213,6 @@ bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
 // enters solid.
 std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
     if (bsp_.nodes.empty()) return std::nullopt;
-    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
     struct Local {
         const BspTree& tree;
         std::optional<Vec3> entry(int node, Vec3 start, Vec3 end, int depth) const {
@@ -218,17 +228,13 @@ std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
                 const bsp::Node& n = bsp.nodes[size_t(node)];
                 if (n.planeNum < 0 || n.planeNum >= int(bsp.planes.size())) return std::nullopt;
                 const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
-                const double front = planeDistance(plane, start), back = planeDistance(plane, end);
-                if (front >= -kOnEpsilon && back >= -kOnEpsilon) {
-                    node = n.children[0];
-                } else if (front < kOnEpsilon && back < kOnEpsilon) {
-                    node = n.children[1];
+                const SegmentStep step = segmentStep(planeDistance(plane, start), planeDistance(plane, end));
+                if (!step.split) {
+                    node = n.children[step.side];
                 } else {
-                    const int side = front < 0 ? 1 : 0;
-                    const float frac = float(front / (front - back));
-                    const Vec3 mid = start + (end - start) * frac;
-                    if (std::optional<Vec3> hit = entry(n.children[side], start, mid, depth + 1)) return hit;
-                    node = n.children[1 - side];
+                    const Vec3 mid = start + (end - start) * step.frac;
+                    if (std::optional<Vec3> hit = entry(n.children[step.side], start, mid, depth + 1)) return hit;
+                    node = n.children[1 - step.side];
                     start = mid;
                 }
                 ++depth;

@@ -121,6 +121,13 @@ std::optional<LightContribution> controlledContribution(const Light& light, Vec3
     return finish(light, value, l, occlusion(env, point, light.origin));
 }
 
+// Most area-light pairs inside the envelope end below the -fast tolerance: the cheap bound rejects
+// those before the exact form factor, with the outcome the exact factor would give.
+bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, const LightingEnv& env) {
+    return (light.fast || env.settings.forceFast) && light.add > 0 &&
+           formFactorUpperBound(light.emitter, pushed, normal) * light.add <= light.falloffTolerance;
+}
+
 }  // namespace
 
 float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
@@ -288,11 +295,7 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
                 dist = clampedDistance(dist, light.extraDist);
                 add = light.photons / (dist * dist) * angle;
             } else {
-                // Most pairs inside the envelope turn out below the -fast tolerance: a cheap bound
-                // rejects those first, with the same outcome the exact factor would give.
-                if ((light.fast || env.settings.forceFast) && light.add > 0 &&
-                    formFactorUpperBound(light.emitter, pushed, n) * light.add <= light.falloffTolerance)
-                    return std::nullopt;
+                if (surelyBelowFastTolerance(light, pushed, n, env)) return std::nullopt;
                 float factor = pointToPolygonFormFactor(pushed, n, light.winding);
                 if (factor == 0) return std::nullopt;
                 if (factor < 0) {
@@ -342,9 +345,7 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
             const float d = dot(origin, light.normal) - light.planeDist;
             if (!light.twoSided && d < -1.0f) return std::nullopt;
             const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
-            if ((light.fast || env.settings.forceFast) && light.add > 0 &&
-                formFactorUpperBound(light.emitter, pushed, dir) * light.add <= light.falloffTolerance)
-                return std::nullopt;
+            if (surelyBelowFastTolerance(light, pushed, dir, env)) return std::nullopt;
             float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
             if (factor == 0) return std::nullopt;
             if (factor < 0) {

@@ -271,17 +271,12 @@ inline std::vector<float> lightEnvelopes(std::span<const Light> lights, bool for
     return out;
 }
 
-// Whether any point of `bounds` lies inside the light's envelope (suns and unbounded lights: always).
-// With the light's envelope already known (loops over many bounds ask for it once).
+// Whether any point of `bounds` lies inside the light's envelope (its lightEnvelope, which loops
+// over many bounds compute once; suns and unbounded lights: always).
 inline bool lightReachesBounds(const Light& light, const Bounds& bounds, float envelope) {
     if (light.type == LightType::Sun || !std::isfinite(envelope)) return true;
     const Vec3 nearest = vmin(vmax(light.origin, bounds.mins), bounds.maxs);
     return distance(nearest, light.origin) < envelope;
-}
-
-inline bool lightReachesBounds(const Light& light, const Bounds& bounds, bool forceFast) {
-    if (light.type == LightType::Sun) return true;
-    return lightReachesBounds(light, bounds, lightEnvelope(light, forceFast));
 }
 
 }  // namespace q3::light

@@ -146,7 +146,8 @@ struct LuxelSampler {
     // lightAt for the sample points of the tiles `active` (`skip[i]` = leave dark), written to
     // out[i] (and the direction towards the light to dirs[i] when `dirs` is set); the shadow rays
     // of the light are traced together as one batch. Entries outside those tiles are not touched.
-    void lightAll(const Light& light, const std::vector<std::optional<SamplePoint>>& points, const LuxelTiles& tiles,
+    void lightAll(const Light& light, float envelope, const std::vector<std::optional<SamplePoint>>& points,
+                  const LuxelTiles& tiles,
                   std::span<const uint32_t> active, const std::vector<uint8_t>& skip, std::vector<Vec3>& out,
                   std::vector<Vec3>* dirs, Scratch& scratch) const {
         std::vector<ShadowRay>& rays = scratch.rays;
@@ -155,7 +156,6 @@ struct LuxelSampler {
         rayLuxel.clear();
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
-        const float envelope = lightEnvelope(light, env.settings.forceFast);
         tiles.forEachLuxel(active, [&](uint32_t i) {
             out[i] = Vec3{};
             if (!points[i] || skip[i]) return;
@@ -531,7 +531,8 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             for (size_t i = 0; i < points.size(); ++i)
                 skip[i] = target.color[i].x >= 255 && target.color[i].y >= 255 && target.color[i].z >= 255;
         const bool withDirs = pass.deluxe && slot == 0;
-        sampler.lightAll(lt, points, tiles, active, skip, single.color, withDirs ? &singleDirs : nullptr, scratch);
+        sampler.lightAll(lt, envelope, points, tiles, active, skip, single.color, withDirs ? &singleDirs : nullptr,
+                         scratch);
         const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, lt.filterRadius), raw.sampleSize,
                                              raw.superSample, o.filter);
         if (maxLevel == 0 && radius == 0) {
