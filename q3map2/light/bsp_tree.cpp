@@ -205,6 +205,85 @@ bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
     }
 }
 
+bool BspTree::hullClearOfSolid(std::span<const Vec3> points) const {
+    if (bsp_.nodes.empty()) return true;
+    if (compact_.empty() || points.empty()) return false;
+    if (segmentRoot_ == kOpenSubtree) return true;
+    if (segmentRoot_ == kSolidSubtree) return false;
+    // The points' box gives an axial plane's distances at once; others take every point.
+    double boxLo[3], boxHi[3];
+    for (int k = 0; k < 3; ++k) boxLo[k] = boxHi[k] = points[0][k];
+    for (const Vec3 p : points) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+        for (int k = 0; k < 3; ++k) {
+            boxLo[k] = std::min(boxLo[k], double(p[k]));
+            boxHi[k] = std::max(boxHi[k], double(p[k]));
+        }
+    }
+    double extent = 0;
+    for (int k = 0; k < 3; ++k) extent = std::max({extent, std::fabs(boxLo[k]), std::fabs(boxHi[k])});
+    if (extent > 1e30) return false;
+    // A walk splits its segment at float midpoints, each of which may stray from the hull by under
+    // 1e-6 of the extent (a few roundings of float coordinates): the margin covers chains of such
+    // splits far longer than real paths take. It stays below the 0.1 on-plane epsilon within 9000
+    // units, so ray starts lying on a wall still walk only its open side, as their segments do.
+    const double margin = 0.01 + 1e-5 * extent;
+    constexpr double kOnEpsilon = 0.1;  // as segmentStep
+    constexpr int kNodeBudget = 192;
+    int32_t stack[kMaxCompactDepth];
+    int top = 0, visited = 0;
+    int32_t node = segmentRoot_;
+    while (true) {
+        if (node == kSolidSubtree || ++visited > kNodeBudget) return false;
+        if (node < 0) {
+            if (top == 0) return true;
+            node = stack[--top];
+            continue;
+        }
+        const CompactNode& n = segmentTree_[size_t(node)];
+        double lo, hi;
+        if (n.axis < 3) {
+            lo = boxLo[n.axis] - n.dist;
+            hi = boxHi[n.axis] - n.dist;
+        } else if (n.axis < 6) {
+            lo = -boxHi[n.axis - 3] - n.dist;
+            hi = -boxLo[n.axis - 3] - n.dist;
+        } else {
+            // The box's nearest and farthest corners first; only a box the plane cuts needs the points.
+            lo = hi = -n.dist;
+            for (int k = 0; k < 3; ++k) {
+                const double w = n.normal[k];
+                lo += w * (w >= 0 ? boxLo[k] : boxHi[k]);
+                hi += w * (w >= 0 ? boxHi[k] : boxLo[k]);
+            }
+            if (lo >= -kOnEpsilon + margin || hi < -kOnEpsilon - margin) {
+                node = n.children[lo >= -kOnEpsilon + margin ? 0 : 1];
+                continue;
+            }
+            lo = std::numeric_limits<double>::infinity();
+            hi = -lo;
+            for (const Vec3 p : points) {
+                const double d =
+                    double(n.normal[0]) * p.x + double(n.normal[1]) * p.y + double(n.normal[2]) * p.z - n.dist;
+                lo = std::min(lo, d);
+                hi = std::max(hi, d);
+            }
+        }
+        // A segment goes front when both ends lie at -0.1 or more, back when that fails and both
+        // lie below 0.1: the whole hull goes back only when it lies below -0.1.
+        if (lo >= -kOnEpsilon + margin) {
+            node = n.children[0];
+        } else if (hi < -kOnEpsilon - margin) {
+            node = n.children[1];
+        } else {
+            // Both sides; the pending side waits on a stack no deeper than the path.
+            if (top == kMaxCompactDepth) return false;
+            stack[top++] = n.children[1];
+            node = n.children[0];
+        }
+    }
+}
+
 bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
     return segmentSolidEntry(from, to).has_value();
 }
@@ -418,8 +497,8 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> o
             hi[k] = i == 0 ? v[k] : std::max(hi[k], v[k]);
         }
     }
-    while (boxed && start >= 0) {
-        const CompactNode& n = compact_[size_t(start)];
+    // Which children every candidate's walk can take at a node: 0 front, 1 back, 2 either.
+    auto boxSide = [&](const CompactNode& n) {
         double dLo = -n.dist, dHi = -n.dist, scale = std::fabs(n.dist);
         for (int k = 0; k < 3; ++k) {
             const double w = n.normal[k];
@@ -428,9 +507,35 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> o
             scale += std::fabs(w) * std::max(std::fabs(lo[k]), std::fabs(hi[k]));
         }
         const double margin = 0.01 + 1e-9 * scale;
-        if (dLo > 0.1 + margin) start = n.children[0];
-        else if (dHi < -0.1 - margin) start = n.children[1];
-        else break;
+        return dLo > 0.1 + margin ? 0 : dHi < -0.1 - margin ? 1 : 2;
+    };
+    while (boxed && start >= 0) {
+        const int side = boxSide(compact_[size_t(start)]);
+        if (side == 2) break;
+        start = compact_[size_t(start)].children[side];
+    }
+    // Deep in solid, every leaf the box reaches lies outside every cluster: no candidate can be
+    // free, which a bounded walk of the box tells at once.
+    if (boxed && start >= 0) {
+        constexpr int kNodeBudget = 256;
+        int32_t pending[kMaxCompactDepth];
+        int top = 0, visited = 0;
+        int32_t node = start;
+        bool allSolid = true;
+        while (allSolid) {
+            if (node < 0) {
+                if (leafCluster_[size_t(-(node + 1))] != -1) allSolid = false;
+                else if (top == 0) break;
+                else node = pending[--top];
+                continue;
+            }
+            if (++visited > kNodeBudget) allSolid = false;
+            const CompactNode& n = compact_[size_t(node)];
+            const int side = boxSide(n);
+            if (side == 2) pending[top++] = n.children[1];
+            node = n.children[side == 2 ? 0 : side];
+        }
+        if (allSolid) return std::nullopt;
     }
     if (boxed && start < 0) {
         // Every candidate lies in this one leaf; only its brushes remain to test.

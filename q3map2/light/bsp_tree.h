@@ -69,6 +69,11 @@ public:
     // Where the same walk first enters such a leaf (the start of the segment's part inside it; the
     // hit point q3map2's dirt and floodlight rays measure), nullopt when it enters none.
     std::optional<Vec3> segmentSolidEntry(Vec3 from, Vec3 to) const;
+    // True when no segment between two points of the convex hull of `points` can cross solid as
+    // segmentCrossesSolid walks it (margins cover the rounding of the walk's split points), so a
+    // batch of rays inside that hull needs no walk of its own. False when some may, or when the
+    // answer would take more than a bounded number of nodes.
+    bool hullClearOfSolid(std::span<const Vec3> points) const;
 
     bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
 

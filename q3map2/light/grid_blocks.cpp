@@ -36,10 +36,11 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 }
 
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
-                        std::vector<uint32_t>& out) {
+                        const ContributionSettings& settings, std::vector<uint32_t>& out) {
     out.clear();
     for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]))
+        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]) &&
+            !areaLightSurelyDarkIn(lights[i], bounds, settings))
             out.push_back(static_cast<uint32_t>(i));
 }
 
@@ -57,20 +58,44 @@ std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, 
     return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }
 
-void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin, bool forceFast,
-                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint) {
+namespace {
+
+// Whether no segment from the box to the point enters structural solid.
+bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
+    std::array<Vec3, 9> hull;
+    for (size_t c = 0; c < 8; ++c)
+        hull[c] = {(c & 1) ? box.maxs.x : box.mins.x, (c & 2) ? box.maxs.y : box.mins.y,
+                   (c & 4) ? box.maxs.z : box.mins.z};
+    hull[8] = point;
+    return tree.hullClearOfSolid(hull);
+}
+
+}  // namespace
+
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                       const ContributionSettings& settings,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
+                       const BspTree* solidTree) {
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
-    const std::vector<float> envelopes = lightEnvelopes(lights, forceFast);
+    const std::vector<float> envelopes = lightEnvelopes(lights, settings.forceFast);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<uint32_t> candidates;
+        BlockLights reaching;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
-            gridLightsReaching(lights, envelopes, gridBlockBounds(block, grid.mins, grid.size, margin), candidates);
+            const Bounds bounds = gridBlockBounds(block, grid.mins, grid.size, margin);
+            gridLightsReaching(lights, envelopes, bounds, settings, reaching.candidates);
+            reaching.clearOfSolid.clear();
+            if (solidTree) {
+                // Sun rays run to the sky, not to an origin: they keep their own walk.
+                for (const uint32_t i : reaching.candidates)
+                    reaching.clearOfSolid.push_back(
+                        lights[i].type != LightType::Sun && boxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
+            }
             block.forEachPoint([&](int x, int y, int z) {
                 const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
                                   grid.mins.z + float(z) * grid.size.z};
-                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, candidates);
+                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, reaching);
             });
             progress.advance(block.pointCount());
         }

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "light_contribution.h"
 #include "lights.h"
 #include "vec3.h"
 
@@ -41,9 +42,10 @@ std::vector<GridBlock> gridBlocks(std::array<int, 3> bounds, int edge);
 Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margin);
 
 // Indices, in light order, of the lights that may light a grid point inside `bounds`: they affect
-// the grid and their envelope (`envelopes`, lightEnvelope of each light) reaches the box.
+// the grid, their envelope (`envelopes`, lightEnvelope of each light) reaches the box, and area
+// lights may add more than their -fast tolerance there (areaLightSurelyDarkIn).
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
-                        std::vector<uint32_t>& out);
+                        const ContributionSettings& settings, std::vector<uint32_t>& out);
 
 class BspTree;
 
@@ -64,12 +66,23 @@ struct GridLattice {
     Vec3 size;
 };
 
-// Calls lightPoint(index, origin, candidates) for every point (index = x + y*bx + z*bx*by), in
-// parallel over blocks of `blockEdge` points per axis (`threads` 0 = one per core). `candidates`
+// The lights that may reach a block's points (indices in light order), and with a tree, for each
+// of them whether no segment from anywhere in the block (nudges included) to the light's origin
+// enters structural solid.
+struct BlockLights {
+    std::vector<uint32_t> candidates;
+    std::vector<uint8_t> clearOfSolid;  // per candidate; empty without a tree
+};
+
+// Calls lightPoint(index, origin, lights) for every point (index = x + y*bx + z*bx*by), in
+// parallel over blocks of `blockEdge` points per axis (`threads` 0 = one per core). The candidates
 // are the lights whose envelope reaches the block grown by `margin` (how far a point may be
-// nudged). Each point is visited once, so results written per index do not depend on the threads.
-using GridPointFn = std::function<void(size_t index, Vec3 origin, std::span<const uint32_t> candidates)>;
-void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin, bool forceFast,
-                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint);
+// nudged); `solidTree` also fills their clearOfSolid. Each point is visited once, so results
+// written per index do not depend on the threads.
+using GridPointFn = std::function<void(size_t index, Vec3 origin, const BlockLights& lights)>;
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                       const ContributionSettings& settings,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
+                       const BspTree* solidTree = nullptr);
 
 }  // namespace q3::light

@@ -231,7 +231,8 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     std::vector<Vec3> origins(numPoints);
     log.info(strCat("SH light grid: ", numPoints, " points"));
     Progress progress = Progress::forConsole(log, numPoints);
-    auto lightPoint = [&](size_t i, Vec3 lattice, std::span<const uint32_t> candidates) {
+    auto lightPoint = [&](size_t i, Vec3 lattice, const BlockLights& reaching) {
+        const std::span<const uint32_t> candidates = reaching.candidates;
         const std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, offsets);
         if (!placed) {
             solid[i] = 1;
@@ -261,7 +262,7 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     };
     // Nudged points move at most nudgeRadius from their lattice position.
     lightGridByBlocks(GridLattice{layout.bounds, layout.mins, layout.size}, ctx.lights, nudgeRadius + 1.0f,
-                      env.settings.forceFast, kBlockEdge, ctx.threads, progress, lightPoint);
+                      env.settings, kBlockEdge, ctx.threads, progress, lightPoint);
     progress.finish();
 
     ShTraceStats stats;

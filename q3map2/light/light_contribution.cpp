@@ -57,12 +57,14 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
 
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
-    if (!env.deferredRays) return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask);
+    if (!env.deferredRays)
+        return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask, env.clearOfSolid);
     std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear);
     // Too short for an occluder to count; structural solid still blocks it (the scene tests the
     // other rays for solid itself, after Embree, so that blocked rays skip the tree walk).
-    if (!ray) return env.scene->crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};
+    if (!ray) return !env.clearOfSolid && env.scene->crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};
     ray->mask = env.rayMask;
+    ray->clearOfSolid = env.clearOfSolid;
     env.deferredRays->push_back(*ray);
     return {1, 1, 1};
 }
@@ -193,6 +195,27 @@ float formFactorUpperBound(const EmitterBounds& b, Vec3 point, Vec3 normal) {
     const float bound = b.area * receiver * emitter / (kPi * nearest * nearest);
     // Room for the float rounding of the exact evaluation.
     return bound * 1.02f + 1e-5f;
+}
+
+bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings) {
+    if (light.type != LightType::Area || light.controlled || settings.faster || box.empty()) return false;
+    // The per-point tests drop points more than 1 unit behind a one-sided emitter.
+    if (!light.twoSided) {
+        float farthest = -light.planeDist;
+        for (int k = 0; k < 3; ++k)
+            farthest += light.normal[k] * (light.normal[k] >= 0 ? box.maxs[k] : box.mins[k]);
+        if (farthest < -1.01f) return true;
+    }
+    if (!(light.fast || settings.forceFast) || !(light.add > 0) || light.emitter.radius < 0) return false;
+    // Points within 8 units of the emitter's plane are pushed to 8 in front of it: under 16 units.
+    constexpr float kPushReach = 16.0f;
+    const Vec3 nearestInBox = vmin(vmax(light.emitter.center, box.mins), box.maxs);
+    const float nearest = distance(nearestInBox, light.emitter.center) - light.emitter.radius - kPushReach;
+    if (!(nearest > 1.0f)) return false;
+    // Both cosines at most 1; the extra 10 % keeps this bound above every per-point one whatever
+    // their roundings.
+    const float bound = light.emitter.area / (kPi * nearest * nearest) * 1.1f + 1e-5f;
+    return bound * light.add <= light.falloffTolerance;
 }
 
 float controlledFalloff(const ControlledParams& p, float d) {

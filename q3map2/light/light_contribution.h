@@ -48,6 +48,9 @@ struct LightingEnv {
     std::vector<ShadowRay>* deferredRays = nullptr;
     // Shadow groups that may block this receiver's rays (TraceScene::receiverMask).
     uint32_t rayMask = kAllShadowGroups;
+    // The caller knows that no segment from its receivers to the lights it asks about enters
+    // structural solid (BspTree::hullClearOfSolid), so rays skip that walk.
+    bool clearOfSolid = false;
 };
 
 // Fraction of the hemisphere above (point, normal) covered by the polygon, signed by facing
@@ -58,6 +61,12 @@ float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> wi
 // `bounds` (unit `normal`): area x cosine bounds / (pi d^2) from the nearest possible distance d.
 // Infinity when the point may lie inside the bounding sphere or the bounds are unknown.
 float formFactorUpperBound(const EmitterBounds& bounds, Vec3 point, Vec3 normal);
+
+// Whether area light `light` surely lights no luxel or grid point inside `box`, so a caller may
+// skip the box at once: the box lies behind a one-sided emitter, or the per-point
+// formFactorUpperBound test, taken over the whole box (with room for the push of points near the
+// emitter's plane), finds no more than the -fast tolerance.
+bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings);
 
 // Controlled-model terms (specs/light-models.md).
 float controlledFalloff(const ControlledParams& p, float distance);

@@ -55,7 +55,9 @@ void lightGrid(LightContext& ctx, Log& log) {
     Progress progress = Progress::forConsole(log, points.size());
     // One grid point: nudged out of solid (or left all-zero, which the engine skips), then lit by
     // the lights that reach its block, in light order.
-    auto lightPoint = [&](size_t i, Vec3 lattice, std::span<const uint32_t> candidates) {
+    LightingEnv clearEnv = env;
+    clearEnv.clearOfSolid = true;
+    auto lightPoint = [&](size_t i, Vec3 lattice, const BlockLights& reaching) {
         const std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, nudges);
         if (!placed) {
             points[i] = bsp::GridPoint{};
@@ -67,9 +69,11 @@ void lightGrid(LightContext& ctx, Log& log) {
         thread_local std::vector<LightContribution> contributions;
         contributions.clear();
         Vec3 total = ctx.world.ambient;
-        for (uint32_t lightIndex : candidates) {
+        for (size_t k = 0; k < reaching.candidates.size(); ++k) {
+            const uint32_t lightIndex = reaching.candidates[k];
+            const bool clear = !reaching.clearOfSolid.empty() && reaching.clearOfSolid[k];
             std::optional<LightContribution> c =
-                lightToGridPoint(ctx.lights[lightIndex], origin, cluster, env, envelopes[lightIndex]);
+                lightToGridPoint(ctx.lights[lightIndex], origin, cluster, clear ? clearEnv : env, envelopes[lightIndex]);
             if (!c) continue;
             contributions.push_back(*c);
             total += c->color;
@@ -80,7 +84,7 @@ void lightGrid(LightContext& ctx, Log& log) {
     };
     // Nudged points move at most nudgeRadius from their lattice position.
     lightGridByBlocks(GridLattice{layout.bounds, layout.mins, layout.size}, ctx.lights, nudgeRadius + 1.0f,
-                      env.settings.forceFast, kBlockEdge, ctx.threads, progress, lightPoint);
+                      env.settings, kBlockEdge, ctx.threads, progress, lightPoint, ctx.tree.get());
     progress.finish();
 
     ctx.bsp.lightGrid = std::move(points);

@@ -185,6 +185,7 @@ void buildScene(LightContext& ctx) {
     options.patchShadows = ctx.options.patchShadows;
     const BspTree* tree = ctx.tree.get();
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
+    options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullClearOfSolid(points); };
     ctx.scene = std::make_unique<TraceScene>(ctx.surfaces, options);
 }
 

@@ -10,9 +10,22 @@ constexpr float kSplitThreshold = 1.0f;  // squared edge length (super luxels) b
 constexpr float kAxialEpsilon = 0.01f;   // an edge this close to a lightmap axis counts as axial
 constexpr float kQuadFlatness = 0.5f;    // the fourth point of a flat quad lies this close to its plane
 
+// `sameNormal`: both normals are one vector that normalize() leaves unchanged, so the midpoint's
+// normal is that vector bit for bit (normalize(n + n) scales by exact powers of two) and needs no
+// square root.
+template <bool sameNormal>
 MapVertex midpoint(const MapVertex& a, const MapVertex& b) {
     return {{(a.st[0] + b.st[0]) * 0.5f, (a.st[1] + b.st[1]) * 0.5f}, (a.xyz + b.xyz) * 0.5f,
-            normalize(a.normal + b.normal)};
+            sameNormal ? a.normal : normalize(a.normal + b.normal)};
+}
+
+// Whether every corner has the same normal and it is a fixed point of normalize().
+template <size_t N>
+bool sharesFixedNormal(const std::array<MapVertex, N>& corners) {
+    const Vec3 n = corners[0].normal;
+    for (const MapVertex& v : corners)
+        if (!(v.normal == n)) return false;
+    return normalize(n) == n;
 }
 
 float squaredStDistance(const MapVertex& a, const MapVertex& b) {
@@ -105,15 +118,20 @@ private:
 
     // Splits the longest edge until every edge is at most one super luxel, mapping each midpoint.
     void splitTriangle(const Tri& tri, Vec3 n, float d) {
+        if (sharesFixedNormal(tri)) splitTriangleAs<true>(tri, n, d);
+        else splitTriangleAs<false>(tri, n, d);
+    }
+    template <bool sameNormal>
+    void splitTriangleAs(const Tri& tri, Vec3 n, float d) {
         const int longest = longestEdgeToSplit(tri);
         if (longest < 0) return;
-        const MapVertex mid = midpoint(tri[size_t(longest)], tri[size_t((longest + 1) % 3)]);
+        const MapVertex mid = midpoint<sameNormal>(tri[size_t(longest)], tri[size_t((longest + 1) % 3)]);
         mapPoint(mid, n, d);
         Tri first = tri, second = tri;
         first[size_t(longest)] = mid;
         second[size_t((longest + 1) % 3)] = mid;
-        splitTriangle(first, n, d);
-        splitTriangle(second, n, d);
+        splitTriangleAs<sameNormal>(first, n, d);
+        splitTriangleAs<sameNormal>(second, n, d);
     }
 
     // The vertices, then either the whole triangle (second pass) or only its axial edges (first
@@ -136,19 +154,24 @@ private:
     }
 
     void splitQuad(const Quad& q, Vec3 n, float d) {
+        if (sharesFixedNormal(q)) splitQuadAs<true>(q, n, d);
+        else splitQuadAs<false>(q, n, d);
+    }
+    template <bool sameNormal>
+    void splitQuadAs(const Quad& q, Vec3 n, float d) {
         const int longest = longestEdgeToSplit(q);
         if (longest < 0) return;
         const int e = longest & 1;  // split both opposite edges of the pair
-        const MapVertex m0 = midpoint(q[size_t(e)], q[size_t(e + 1)]);
-        const MapVertex m1 = midpoint(q[size_t(e + 2)], q[size_t((e + 3) % 4)]);
+        const MapVertex m0 = midpoint<sameNormal>(q[size_t(e)], q[size_t(e + 1)]);
+        const MapVertex m1 = midpoint<sameNormal>(q[size_t(e + 2)], q[size_t((e + 3) % 4)]);
         mapPoint(m0, n, d);
         mapPoint(m1, n, d);
         if (e == 0) {
-            splitQuad({q[0], m0, m1, q[3]}, n, d);
-            splitQuad({m0, q[1], q[2], m1}, n, d);
+            splitQuadAs<sameNormal>({q[0], m0, m1, q[3]}, n, d);
+            splitQuadAs<sameNormal>({m0, q[1], q[2], m1}, n, d);
         } else {
-            splitQuad({q[0], q[1], m0, m1}, n, d);
-            splitQuad({m1, m0, q[2], q[3]}, n, d);
+            splitQuadAs<sameNormal>({q[0], q[1], m0, m1}, n, d);
+            splitQuadAs<sameNormal>({m1, m0, q[2], q[3]}, n, d);
         }
     }
 

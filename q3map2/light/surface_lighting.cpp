@@ -60,11 +60,15 @@ struct LuxelTiles {
             }
     }
 
-    // The tiles the light's envelope reaches.
-    void reachedBy(const Light& light, float envelope, std::vector<uint32_t>& out) const {
+    // The tiles the light's envelope reaches (and for area lights, whose form factor bound allows
+    // more than the -fast tolerance).
+    void reachedBy(const Light& light, float envelope, const ContributionSettings& settings,
+                   std::vector<uint32_t>& out) const {
         out.clear();
         for (size_t t = 0; t < bounds.size(); ++t)
-            if (lightReachesBounds(light, bounds[t], envelope)) out.push_back(static_cast<uint32_t>(t));
+            if (lightReachesBounds(light, bounds[t], envelope) &&
+                !areaLightSurelyDarkIn(light, bounds[t], settings))
+                out.push_back(static_cast<uint32_t>(t));
     }
     template <typename Visit>
     void forEachLuxel(std::span<const uint32_t> tiles, Visit&& visit) const {
@@ -519,7 +523,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
                                                                   : lightEnvelope(lt, env.settings.forceFast);
         if (bounds.empty() || !lightReachesBounds(lt, bounds, envelope)) continue;
         if (!inFrontOfPlane(lt, reach) || !visibleFromLightmap(lt, reach, env.tree)) continue;
-        tiles.reachedBy(lt, envelope, active);
+        tiles.reachedBy(lt, envelope, env.settings, active);
         if (active.empty()) continue;
         const int slot = light.slotFor(lt.style, light.images[0]);
         if (slot < 0) {

@@ -174,7 +174,9 @@ bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOption
 }
 
 TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
-    : embree_(std::make_unique<EmbreeState>()), solidBetween_(options.solidBetween) {
+    : embree_(std::make_unique<EmbreeState>()),
+      solidBetween_(options.solidBetween),
+      hullClearOfSolid_(options.hullClearOfSolid) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
@@ -268,10 +270,11 @@ ShadowRay TraceScene::skyRay(Vec3 from, Vec3 direction, int skyIndex, float igno
                      true, skyIndex, kAllShadowGroups};
 }
 
-Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear, uint32_t mask) const {
+Vec3 TraceScene::transmission(Vec3 from, Vec3 to, float ignoreNear, uint32_t mask, bool clearOfSolid) const {
     std::optional<ShadowRay> ray = segmentRay(from, to, ignoreNear);
-    if (!ray) return crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};  // too short for occluders
+    if (!ray) return !clearOfSolid && crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};  // too short for occluders
     ray->mask = mask;
+    ray->clearOfSolid = clearOfSolid;
     return traceOne(*ray);
 }
 
@@ -320,9 +323,32 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     RTCRay ray = makeRay(r, tfar);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
-    if (!r.toSky && crossesSolid(r.from, r.from + r.direction * r.tfar)) return {};
+    if (!r.toSky && !r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * r.tfar)) return {};
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
+
+namespace {
+
+// Whether the open point-light segments among `traced` (ids index `rays`) cannot enter solid,
+// told by one walk of the hull of their ends for all of them.
+bool openSegmentsClear(const std::function<bool(std::span<const Vec3>)>& hullClearOfSolid,
+                       std::span<const ShadowRay> rays, const RTCRay* traced, size_t count) {
+    if (!hullClearOfSolid) return false;
+    // One hull walk costs about what a few segment walks do.
+    constexpr size_t kMinSegments = 4;
+    std::array<Vec3, 128> ends;  // both ends of a whole chunk of rays
+    size_t numEnds = 0;
+    for (size_t k = 0; k < count && numEnds + 2 <= ends.size(); ++k) {
+        const ShadowRay& r = rays[traced[k].id];
+        if (traced[k].tfar < 0 || r.toSky || r.clearOfSolid) continue;
+        ends[numEnds++] = r.from;
+        ends[numEnds++] = r.from + r.direction * r.tfar;
+    }
+    if (numEnds < 2 * kMinSegments) return false;
+    return hullClearOfSolid(std::span<const Vec3>(ends.data(), numEnds));
+}
+
+}  // namespace
 
 void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const {
     const size_t n = std::min(rays.size(), out.size());
@@ -398,12 +424,15 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
+    // Segments that Embree leaves open still stop at structural solid (sun rays were tested up to
+    // their sky above): the tree walk only for the rays that need it, and none when the hull of
+    // their ends is clear.
+    static_assert(kBatchChunk <= 64, "openSegmentsClear holds both ends of a chunk's rays");
+    const bool clear = openSegmentsClear(hullClearOfSolid_, rays, occlusionBuffer, numOcclusion);
     for (size_t k = 0; k < numOcclusion; ++k) {
         if (occlusionBuffer[k].tfar < 0) continue;
-        // Segments that Embree leaves open still stop at structural solid (sun rays were tested
-        // up to their sky above): the tree walk only for the rays that need it.
         const ShadowRay& r = rays[occlusionBuffer[k].id];
-        if (!r.toSky && crossesSolid(r.from, r.from + r.direction * r.tfar)) continue;
+        if (!clear && !r.toSky && !r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * r.tfar)) continue;
         out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
     }
     if (hits.empty()) return;

@@ -47,6 +47,9 @@ struct TraceSceneOptions {
     // whatever the inhibit radius: a ray grazing up a wall that a vertex lies on stays in the dark,
     // and so does the light behind the wall. Empty: no test.
     std::function<bool(Vec3 from, Vec3 to)> solidBetween;
+    // Optional shortcut for many rays: true when no segment inside the convex hull of the points
+    // (at most BspTree::kMaxHullPoints) can enter solid, so solidBetween need not be asked for them.
+    std::function<bool(std::span<const Vec3> points)> hullClearOfSolid;
 };
 
 // Every shadow group: the ray mask of rays that any caster may block.
@@ -62,6 +65,7 @@ struct ShadowRay {
     bool toSky = false;
     int skyIndex = -1;
     uint32_t mask = kAllShadowGroups;  // shadow groups that may block it (TraceScene::receiverMask)
+    bool clearOfSolid = false;         // the caller knows the segment enters no structural solid
 };
 
 class TraceScene {
@@ -79,7 +83,9 @@ public:
 
     // Colour transmitted from `from` to `to` (1 1 1 = unobstructed, 0 0 0 = blocked). Occluders
     // closer than `ignoreNear` to `from` are ignored. Sky surfaces block like any wall.
-    Vec3 transmission(Vec3 from, Vec3 to, float ignoreNear = 0, uint32_t mask = kAllShadowGroups) const;
+    // `clearOfSolid`: the caller knows the segment enters no structural solid (no tree walk).
+    Vec3 transmission(Vec3 from, Vec3 to, float ignoreNear = 0, uint32_t mask = kAllShadowGroups,
+                      bool clearOfSolid = false) const;
 
     // Colour transmitted from `from` along `direction` (unit) to the sky. Zero unless the first
     // opaque surface met is a sky surface whose index matches `skyIndex` (-1 accepts any sky).
@@ -133,6 +139,7 @@ private:
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
     std::function<bool(Vec3, Vec3)> solidBetween_;
+    std::function<bool(std::span<const Vec3>)> hullClearOfSolid_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {

@@ -285,18 +285,25 @@ TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
     EXPECT_NEAR(std::fabs(pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, rect)), cornerFormFactor(100, 60, h), 1e-4);
 }
 
-TEST(AreaLight, ContributionFromSurfaceLight) {
+// The area lights of a square emitter of `surfaceLight` (no backsplash), `half` units from its
+// centre to each side at height `h`, facing along z by `facing`.
+std::vector<Light> squareEmitterLights(float surfaceLight, float half, float h, float facing) {
     LightingShader sh;
-    sh.surfaceLight = 1000;
+    sh.surfaceLight = surfaceLight;
     sh.backsplashFraction = 0;
     sh.backsplashSet = true;
     EmitterGeometry g;
-    const float h = 100;
-    g.xyz = {{-50, -50, h}, {50, -50, h}, {50, 50, h}, {-50, 50, h}};
-    g.normals.assign(4, Vec3{0, 0, -1});
+    g.xyz = {{-half, -half, h}, {half, -half, h}, {half, half, h}, {-half, half, h}};
+    g.normals.assign(4, Vec3{0, 0, facing});
     g.triangles = {0, 1, 2, 0, 2, 3};
     std::vector<Light> lights;
     appendAreaLights(lights, g, sh, {});
+    return lights;
+}
+
+TEST(AreaLight, ContributionFromSurfaceLight) {
+    const float h = 100;
+    const std::vector<Light> lights = squareEmitterLights(1000, 50, h, -1);
     ASSERT_EQ(lights.size(), 2u);  // one per triangle, no chopping at the default 999
     LightingEnv env;
     std::vector<LightContribution> out;
@@ -327,6 +334,50 @@ TEST(AreaLight, ContributionFromSurfaceLight) {
     // Behind the emitter: nothing.
     env.settings.faster = false;
     EXPECT_FALSE(lightToSample(lights[0], SamplePoint{{0, 0, 200}, {0, 0, -1}}, env));
+}
+
+// A box the whole-box test calls dark holds no luxel or grid point that the light reaches: random
+// boxes around a small -fast emitter, probed at their corners and inside, facing every way.
+TEST(AreaLight, DarkBoxesHoldNoLitPoint) {
+    const std::vector<Light> lights = squareEmitterLights(5000, 8, 0, 1);
+    ASSERT_FALSE(lights.empty());
+    LightingEnv env;
+    env.settings.forceFast = true;
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<float> unit(-1, 1);
+    int dark = 0, lit = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const Light& light = lights[size_t(trial) % lights.size()];
+        const Vec3 centre = Vec3{unit(rng), unit(rng), unit(rng)} * 400.0f;
+        const Vec3 half = Vec3{unit(rng) + 1, unit(rng) + 1, unit(rng) + 1} * 40.0f;
+        const Bounds box{centre - half, centre + half};
+        if (!areaLightSurelyDarkIn(light, box, env.settings)) {
+            ++lit;
+            continue;
+        }
+        ++dark;
+        for (int k = 0; k < 24; ++k) {
+            const Vec3 f{unit(rng) * 0.5f + 0.5f, unit(rng) * 0.5f + 0.5f, unit(rng) * 0.5f + 0.5f};
+            Vec3 p = box.mins + (box.maxs - box.mins) * f;
+            if (k < 8) p = {(k & 1) ? box.maxs.x : box.mins.x, (k & 2) ? box.maxs.y : box.mins.y, (k & 4) ? box.maxs.z : box.mins.z};
+            const Vec3 normal = normalize(light.origin - p + Vec3{unit(rng), unit(rng), unit(rng)} * 100.0f);
+            ASSERT_FALSE(lightToSample(light, SamplePoint{p, normal, -1, true}, env)) << trial << " " << k;
+            ASSERT_FALSE(lightToGridPoint(light, p, -1, env)) << trial << " " << k;
+        }
+    }
+    // Both answers occur, including boxes behind the emitter (one-sided).
+    EXPECT_GT(dark, 500);
+    EXPECT_GT(lit, 500);
+    // The emitter's plane lies 1 unit out along its normal (+z); points more than 1 behind it are dark.
+    EXPECT_TRUE(areaLightSurelyDarkIn(lights[0], Bounds{{-50, -50, -90}, {50, 50, -0.2f}}, env.settings));
+    EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], Bounds{{-50, -50, -90}, {50, 50, 0.5f}}, env.settings));
+    // Just under 1 unit behind that plane, a point facing sideways is still lit.
+    const Bounds thin{{20, -2, 0.1f}, {24, 2, 0.3f}};
+    const Vec3 edge{22, 0, 0.2f};
+    EXPECT_TRUE(lightToSample(lights[0], SamplePoint{edge, normalize(lights[0].origin - edge), -1, true}, env));
+    EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], thin, env.settings));
+    env.settings.faster = true;  // -faster lights grid points behind emitters: no box is skipped
+    EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], Bounds{{-50, -50, -90}, {50, 50, -0.2f}}, env.settings));
 }
 
 TEST(GridPoint, PointLightHasNoAngleTerm) {

@@ -1,6 +1,8 @@
 // The Embree shadow scene: opaque walls, sky masking, alpha shadows and light filters.
 #include <gtest/gtest.h>
 
+#include <span>
+
 #include <algorithm>
 
 #include "light_test_util.h"
@@ -54,7 +56,9 @@ TEST(TraceScene, NonCastingSurfaces) {
     SceneSurface quiet = quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
     quiet.castShadows = 0;
     EXPECT_FALSE(TraceScene::castsShadow(quiet, {}));
-    EXPECT_TRUE(TraceScene::castsShadow(patch, TraceSceneOptions{.patchShadows = true}));
+    TraceSceneOptions patchShadows;
+    patchShadows.patchShadows = true;
+    EXPECT_TRUE(TraceScene::castsShadow(patch, patchShadows));
 
     std::vector<SceneSurface> s{quad({-64, 50, -64}, {128, 0, 0}, {0, 0, 128}, &trans)};
     TraceScene scene(s, {});
@@ -173,6 +177,46 @@ TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {
     }
     EXPECT_GT(blocked, 0);
     EXPECT_LT(blocked, int(rays.size()));
+}
+
+TEST(TraceScene, ClearHullsAndClearRaysSkipTheSolidWalk) {
+    // The solid test calls x > 100 solid and counts its calls. A batch whose hull the scene's hull
+    // test calls clear asks it nothing; one it does not call clear asks once per open segment; a
+    // ray the caller marks clear of solid is never asked about, singly or in a batch.
+    std::vector<SceneSurface> s{quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0})};
+    int walks = 0, hulls = 0;
+    bool hullAnswer = true;
+    TraceSceneOptions options;
+    options.solidBetween = [&](Vec3 from, Vec3 to) {
+        ++walks;
+        return std::max(from.x, to.x) > 100;
+    };
+    options.hullClearOfSolid = [&](std::span<const Vec3> points) {
+        ++hulls;
+        EXPECT_EQ(points.size() % 2, 0u);
+        return hullAnswer;
+    };
+    TraceScene scene(s, options);
+    std::vector<ShadowRay> rays;
+    for (int i = 0; i < 20; ++i) rays.push_back(*TraceScene::segmentRay({float(i) * 10, 0, 0}, {0, 0, 300}));
+    std::vector<Vec3> out(rays.size());
+    scene.traceBatch(rays, out);
+    EXPECT_EQ(hulls, 1);
+    EXPECT_EQ(walks, 0);
+    for (const Vec3& t : out) EXPECT_EQ(t, (Vec3{1, 1, 1}));
+
+    hullAnswer = false;
+    scene.traceBatch(rays, out);
+    EXPECT_EQ(hulls, 2);
+    EXPECT_EQ(walks, 20);
+    for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(out[i], (i > 10 ? Vec3{} : Vec3{1, 1, 1})) << i;
+
+    for (ShadowRay& r : rays) r.clearOfSolid = true;
+    scene.traceBatch(rays, out);
+    EXPECT_EQ(walks, 20);
+    EXPECT_EQ(scene.transmission({150, 0, 0}, {150, 0, 400}, 0, kAllShadowGroups, true), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({150, 0, 0}, {150, 0, 400}), (Vec3{0, 0, 0}));
+    EXPECT_EQ(walks, 21);
 }
 
 TEST(TraceScene, AlphaShadowAndLightFilterAttenuate) {

@@ -166,6 +166,72 @@ TEST(BspTreeWalk, NudgeSearchInsideOneSolidLeafEndsAtOnce) {
     EXPECT_EQ(*tree.nudgeOutOfSolid({10, 0, 0}, offsets), (Vec3{10, 0, 0}));
 }
 
+// A hull the walk calls clear holds no segment that crosses solid: segments between its corners,
+// between points inside it, and along its faces, many of them on or near the generator's planes.
+TEST(BspTreeWalk, ClearHullsHoldNoSegmentThatCrossesSolid) {
+    int clear = 0, unclear = 0;
+    for (uint32_t seed = 1; seed <= 8; ++seed) {
+        RandomTree t(seed);
+        const BspTree tree(t.b);
+        const std::vector<Vec3> points = probePoints(t);
+        for (size_t i = 0; i + 1 < points.size(); i += 2) {
+            // A small box of ray starts and a light (or a small emitter box) some way off.
+            const float spread = t.uniform(0.0f, 40.0f), far = t.uniform(0.0f, 8.0f);
+            const Vec3 a = points[i], b = points[i + 1];
+            const Vec3 aMax = a + Vec3{spread, spread * 0.5f, 0.0f}, bMax = b + Vec3{far, far, far};
+            std::vector<Vec3> corners;
+            for (int c = 0; c < 8; ++c) {
+                corners.push_back({(c & 1) ? aMax.x : a.x, (c & 2) ? aMax.y : a.y, (c & 4) ? aMax.z : a.z});
+                corners.push_back({(c & 1) ? bMax.x : b.x, (c & 2) ? bMax.y : b.y, (c & 4) ? bMax.z : b.z});
+            }
+            if (!tree.hullClearOfSolid(corners)) {
+                ++unclear;
+                continue;
+            }
+            ++clear;
+            for (int k = 0; k < 40; ++k) {
+                const float u = t.uniform(0, 1), v = t.uniform(0, 1), w = t.uniform(0, 1);
+                const Vec3 from = k < 16 ? corners[size_t(k)] : lerp(a, aMax, u);
+                const Vec3 to = k < 16 ? corners[size_t(15 - k)] : lerp(b, bMax, k % 2 ? v : w);
+                ASSERT_FALSE(tree.segmentCrossesSolid(from, to)) << seed << " " << i << " " << k;
+            }
+        }
+    }
+    // Both answers are exercised.
+    EXPECT_GT(clear, 100);
+    EXPECT_GT(unclear, 100);
+}
+
+TEST(BspTreeWalk, HullWalkKeepsTheOnPlaneEpsilon) {
+    // Root splits at x = 0: front leaf open, back leaf outside every cluster. A segment whose ends
+    // both lie at -0.1 or more stays in front, so a hull just behind the plane is still clear.
+    bsp::Bsp b;
+    b.planes = {{{1, 0, 0}, 0}};
+    b.nodes = {{0, {-1, -2}, {0, 0, 0}, {0, 0, 0}}};
+    b.leafs = {{0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, {-1, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
+    const BspTree tree(b);
+    const std::vector<Vec3> inFront = {{1, 0, 0}, {50, 9, 3}, {7, -20, 4}};
+    const std::vector<Vec3> onPlane = {{-0.05f, 0, 0}, {-0.05f, 10, 0}, {5, 0, 10}};
+    const std::vector<Vec3> behind = {{-1, 0, 0}, {5, 0, 0}};
+    EXPECT_TRUE(tree.hullClearOfSolid(inFront));
+    EXPECT_TRUE(tree.hullClearOfSolid(onPlane));
+    EXPECT_FALSE(tree.segmentCrossesSolid(onPlane[0], onPlane[2]));
+    EXPECT_FALSE(tree.hullClearOfSolid(behind));
+    EXPECT_TRUE(tree.segmentCrossesSolid(behind[0], behind[1]));
+    // Solid in front, open behind: a hull reaching from well behind to just in front holds
+    // segments that stay within 0.1 of the plane and so walk the solid front.
+    bsp::Bsp flipped = b;
+    flipped.leafs[0].cluster = -1;
+    flipped.leafs[1].cluster = 0;
+    const BspTree flippedTree(flipped);
+    const std::vector<Vec3> straddling = {{-5, 0, 0}, {0.05f, 0, 0}, {-5, 10, 0}};
+    EXPECT_TRUE(flippedTree.segmentCrossesSolid({0.05f, 0, 0}, {-0.05f, 0, 0}));
+    EXPECT_FALSE(flippedTree.hullClearOfSolid(straddling));
+    EXPECT_TRUE(flippedTree.hullClearOfSolid(std::vector<Vec3>{{-5, 0, 0}, {-0.5f, 3, 0}}));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(tree.hullClearOfSolid(std::vector<Vec3>{{1, 0, 0}, {nan, 0, 0}}));
+}
+
 TEST(BspTreeWalk, HostileTreesKeepThePlainWalks) {
     bsp::Bsp b;
     b.planes = {{{1, 0, 0}, 0}, {{0, 1, 0}, 0}};
