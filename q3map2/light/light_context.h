@@ -58,6 +58,9 @@ struct LightContext {
     std::vector<SceneSurface> surfaces;  // world-space geometry of every BSP surface
     std::vector<Vec3> surfaceOffsets;    // per BSP surface: origin of the brush model it belongs to
     std::vector<std::vector<int>> surfaceClusters;  // per BSP surface: clusters of the leafs listing it
+    // Per lightmapped BSP surface: the surfaceClusters of every surface sharing its q3map2 raw
+    // lightmap; a light must be seen from one of them (empty: no test).
+    std::vector<std::vector<int>> lightmapGroupClusters;
     std::vector<int> receiveShadows;     // per BSP surface: shadow group it receives from (0 = none)
     std::vector<Vec3> shadedNormals;     // per draw vertex; empty = the BSP's normals (phong.h)
     std::unique_ptr<ShaderAlbedoSet> albedo;  // textures as reflectors (-bounce, -shgather); shaderAlbedo()

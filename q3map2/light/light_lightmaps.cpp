@@ -14,6 +14,7 @@
 #include "light_styles.h"
 #include "light_text.h"
 #include "lightmap_export.h"
+#include "lightmap_layout_merge.h"
 #include "lightmap_pack.h"
 #include "luxel_passes.h"
 #include "progress.h"
@@ -31,6 +32,57 @@ std::vector<int> lightmappedSurfaces(const LightContext& ctx) {
             surfaces.push_back(static_cast<int>(i));
     }
     return surfaces;
+}
+
+// q3map2 lights the surfaces that share a raw lightmap together, with the lights seen from a cluster
+// of any of them: per surface, the union of the surfaceClusters of its group.
+std::vector<std::vector<int>> lightmapGroupClusters(const LightContext& ctx, std::span<const int> surfaces,
+                                                    const LayoutOptions& layoutOptions) {
+    std::vector<int> modelOf(ctx.bsp.surfaces.size(), 0);
+    for (size_t m = 0; m < ctx.bsp.models.size(); ++m) {
+        const bsp::Model& model = ctx.bsp.models[m];
+        for (int s = model.firstSurface; s < model.firstSurface + model.numSurfaces; ++s)
+            if (s >= 0 && size_t(s) < modelOf.size()) modelOf[size_t(s)] = int(m);
+    }
+    const LightOptions& o = ctx.options;
+    std::vector<SurfaceLightmapInput> inputs;
+    inputs.reserve(surfaces.size());
+    for (int s : surfaces) {
+        const bsp::Surface& surface = ctx.bsp.surfaces[size_t(s)];
+        const LightingShader& shader = ctx.shaders.shaders[size_t(surface.shaderNum)];
+        const SurfaceExtra& extra = ctx.extras.forSurface(s);
+        SurfaceLightmapInput in;
+        in.geometry = surfaceGeometry(ctx.bsp, s, ctx.shadedNormals);
+        if (surface.surfaceType == bsp::MST_PATCH)
+            in.geometry.mesh = curvedMesh(ctx.bsp, surface, ctx.shadedNormals, ctx.extras.loaded ? extra.longestCurve : 0.0f);
+        in.params.sampleSize = resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize,
+                                                 o.sampleSize, layoutOptions.sampleScale);
+        in.params.axis = extra.lightmapAxis;
+        if (shader.lightmapAxis >= 0 && shader.lightmapAxis < 3) {
+            in.params.axis = Vec3{};
+            in.params.axis[shader.lightmapAxis] = 1;
+        }
+        in.params.sampleOffset = shader.lightmapSampleOffset;
+        in.traits.model = modelOf[size_t(s)];
+        in.traits.shader = extra.shader.empty() ? shader.name : extra.shader;
+        in.traits.entity = extra.entity;
+        in.traits.receiveShadows = extra.receiveShadows;
+        in.traits.brightness = shader.lightmapBrightness;
+        in.traits.filterRadius = shader.lightmapFilterRadius;
+        inputs.push_back(std::move(in));
+    }
+    std::vector<std::vector<int>> out(ctx.bsp.surfaces.size());
+    for (const std::vector<size_t>& group : groupSurfacesForLightmaps(inputs)) {
+        std::vector<int> clusters;
+        for (size_t k : group) {
+            const std::vector<int>& own = ctx.surfaceClusters[size_t(surfaces[k])];
+            clusters.insert(clusters.end(), own.begin(), own.end());
+        }
+        std::sort(clusters.begin(), clusters.end());
+        clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
+        for (size_t k : group) out[size_t(surfaces[k])] = clusters;
+    }
+    return out;
 }
 
 std::vector<SurfaceLight> lightPass(const LightContext& ctx, std::span<const int> surfaces,
@@ -172,6 +224,7 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     const LightOptions& o = ctx.options;
     const std::vector<int> surfaces = lightmappedSurfaces(ctx);
     const LayoutOptions layoutOptions = layoutOptionsFor(ctx, log);
+    ctx.lightmapGroupClusters = lightmapGroupClusters(ctx, surfaces, layoutOptions);
     const LuxelPasses* passes = ctx.luxelPasses.get();
     const bool deluxe = deluxeSettings(ctx).has_value();
 

@@ -144,7 +144,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
     ctx.receiveShadows.assign(bsp.surfaces.size(), 1);
     for (size_t s = 0; s < surfaceFlags.size(); ++s) ctx.receiveShadows[s] = surfaceFlags[s].receive;
     ctx.surfaceOffsets = surfaceOffset;
-    ctx.surfaceClusters = surfaceClusterLists(bsp);
+    ctx.surfaceClusters = surfaceClusterLists(bsp, surfaceOffset);
     ctx.surfaces.clear();
     ctx.surfaces.resize(bsp.surfaces.size());
     for (size_t i = 0; i < bsp.surfaces.size(); ++i) {

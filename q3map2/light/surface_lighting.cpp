@@ -266,6 +266,15 @@ bool inFrontOfPlane(const Light& light, const LightmapReach& r) {
     return dot(light.origin, r.planeNormal) - r.planeDist >= -1.0f;
 }
 
+// q3map2 CreateTraceLightsForBounds: a light no cluster of the raw lightmap's surfaces sees is
+// dropped for all its luxels (an empty list keeps every light).
+bool seenFromGroup(const Light& light, std::span<const int> clusters, const BspTree* tree) {
+    if (!tree || light.type == LightType::Sun || light.cluster < 0 || clusters.empty()) return true;
+    for (int c : clusters)
+        if (tree->clusterVisible(light.cluster, c)) return true;
+    return false;
+}
+
 bool visibleFromLightmap(const Light& light, const LightmapReach& r, const BspTree* tree) {
     if (!tree || light.type == LightType::Sun || light.cluster < 0 || r.clusters.empty()) return true;
     for (int c : r.clusters)
@@ -396,14 +405,31 @@ void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, std::vec
 
 }  // namespace
 
-std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp) {
+std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp, std::span<const Vec3> offsets) {
+    // World-space bounds of every surface, as q3map2 tests them against the leafs' bounds.
+    std::vector<Bounds> bounds(bsp.surfaces.size());
+    for (size_t i = 0; i < bsp.surfaces.size(); ++i) {
+        const bsp::Surface& s = bsp.surfaces[i];
+        const Vec3 offset = i < offsets.size() ? offsets[i] : Vec3{};
+        for (int v = 0; v < s.numVerts; ++v) {
+            const size_t k = size_t(s.firstVert) + size_t(v);
+            if (k < bsp.drawVerts.size()) bounds[i].add(Vec3::fromArray(bsp.drawVerts[k].xyz) + offset);
+        }
+    }
     std::vector<std::vector<int>> out(bsp.surfaces.size());
     for (const bsp::Leaf& leaf : bsp.leafs)
         for (int k = 0; k < leaf.numLeafSurfaces; ++k) {
             const size_t i = size_t(leaf.firstLeafSurface) + size_t(k);
             if (i >= bsp.leafSurfaces.size()) continue;
             const int32_t surface = bsp.leafSurfaces[i];
-            if (surface >= 0 && size_t(surface) < out.size()) out[size_t(surface)].push_back(leaf.cluster);
+            if (surface < 0 || size_t(surface) >= out.size()) continue;
+            // q3map2 skips a listing leaf whose stored (integer) bounds miss the surface's bounds,
+            // so a face half a unit outside its leaf's rounded box brings no cluster.
+            const Bounds& b = bounds[size_t(surface)];
+            bool touches = true;
+            for (int a = 0; a < 3; ++a)
+                if (float(leaf.mins[a]) > b.maxs[a] || float(leaf.maxs[a]) < b.mins[a]) touches = false;
+            if (touches) out[size_t(surface)].push_back(leaf.cluster);
         }
     for (std::vector<int>& clusters : out) {
         std::sort(clusters.begin(), clusters.end());
@@ -505,6 +531,10 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             ++result.luxelCount;
         }
 
+    const std::span<const int> groupClusters =
+        size_t(surfaceNum) < ctx.lightmapGroupClusters.size()
+            ? std::span<const int>(ctx.lightmapGroupClusters[size_t(surfaceNum)])
+            : std::span<const int>();
     const LightmapReach reach =
         lightmapReach(points, bounds, raw, surface.surfaceType == bsp::MST_PLANAR, shader.twoSided, offset);
     StyledSuperLight light{{0}, {std::move(total)}, {}};
@@ -523,6 +553,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
                                                                   : lightEnvelope(lt, env.settings.forceFast);
         if (bounds.empty() || !lightReachesBounds(lt, bounds, envelope)) continue;
         if (!inFrontOfPlane(lt, reach) || !visibleFromLightmap(lt, reach, env.tree)) continue;
+        if (!seenFromGroup(lt, groupClusters, env.tree)) continue;
         tiles.reachedBy(lt, envelope, env.settings, active);
         if (active.empty()) continue;
         const int slot = light.slotFor(lt.style, light.images[0]);

@@ -55,9 +55,9 @@ struct SurfaceLight {
     LightmapLayer& layerFor(int style);  // creates the layer (zero light) when missing
 };
 
-// For every surface, the clusters of the leafs whose surface lists hold it (sorted, unique), from
-// one walk over the leafs.
-std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp);
+// For every surface, the clusters of the leafs whose surface lists hold it and whose stored bounds
+// touch the surface's bounds (vertexes moved by `offsets`, per surface) (sorted, unique).
+std::vector<std::vector<int>> surfaceClusterLists(const bsp::Bsp& bsp, std::span<const Vec3> offsets);
 // q3map2 ClusterForPointExtFilter on a point's cluster: kept when it is one of `clusters` or sees
 // one of them (or when `clusters` is empty), else -1.
 int clusterSeenBySurface(const BspTree& tree, int cluster, std::span<const int> clusters);
