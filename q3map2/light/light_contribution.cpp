@@ -73,7 +73,7 @@ Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
     if (!env.scene) return {1, 1, 1};
     if (env.deferredRays) {
         // Sun normals are unit vectors already (skyRay would normalise again).
-        env.deferredRays->push_back(ShadowRay{from, sun.normal, std::max(env.settings.ignoreNear, 0.0f),
+        env.deferredRays->push_back(ShadowRay{from, sun.normal, TraceScene::firstTestedDepth(env.settings.ignoreNear),
                                               std::numeric_limits<float>::infinity(), true, sun.skyIndex,
                                               env.rayMask});
         return {1, 1, 1};

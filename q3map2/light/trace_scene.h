@@ -100,6 +100,10 @@ public:
     // a negative group by casters whose group has the same magnitude; 0 by nothing.
     uint32_t receiverMask(int receiveShadows) const;
 
+    // The depth a ray starts at when occluders up to `ignoreNear` are ignored: q3map2 passes a hit
+    // at exactly the inhibit radius (TraceTriangle skips depth <= inhibitRadius), so a grid point
+    // half a cell below a sky face does not see that sky and its sun ray runs on into the solid.
+    static float firstTestedDepth(float ignoreNear);
     // The ray transmission() traces from `from` to `to`; nullopt when nothing can block it.
     static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0);
     // The ray skyTransmission() traces.

@@ -140,6 +140,30 @@ TEST(TraceScene, OpaqueRoofBlocksSun) {
     EXPECT_EQ(scene.skyTransmission({300, 0, 0}, {0, 0, 1}, 0), (Vec3{1, 1, 1}));
 }
 
+TEST(TraceScene, HitAtExactlyIgnoreNearIsPassed) {
+    // q3map2 skips hits at a depth up to and including the inhibit radius: a sky face exactly
+    // ignoreNear above the point is not seen (the sun ray escapes and the point stays dark, as a
+    // grid point half a cell below a skybox roof does); a hair further away it is.
+    LightingShader sky;
+    sky.sky = true;
+    std::vector<SceneSurface> s{quad({-1000, -1000, 64}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0),
+                                quad({-1000, 50, -1000}, {2000, 0, 0}, {0, 0, 2000})};  // wall y = 50
+    TraceScene scene(s, {});
+    const Vec3 up{0, 0, 1};
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 0, 64), (Vec3{0, 0, 0}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, -0.5f}, up, 0, 64), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.skyTransmission({0, 0, 0}, up, 0, 63.5f), (Vec3{1, 1, 1}));
+    // Segments alike: a wall exactly ignoreNear away does not block, single or batched.
+    EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 60, 0}, 50), (Vec3{1, 1, 1}));
+    EXPECT_EQ(scene.transmission({0, -1, 0}, {0, 60, 0}, 50), (Vec3{0, 0, 0}));
+    std::vector<ShadowRay> rays{*TraceScene::segmentRay({0, 0, 0}, {0, 60, 0}, 50),
+                                TraceScene::skyRay({0, 0, 0}, up, 0, 64)};
+    std::vector<Vec3> out(rays.size());
+    scene.traceBatch(rays, out);
+    EXPECT_EQ(out[0], (Vec3{1, 1, 1}));
+    EXPECT_EQ(out[1], (Vec3{0, 0, 0}));
+}
+
 TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {
     // A sky ceiling and no caster below it; the solid test calls x > 100 solid. A sun ray that
     // stays out of it reaches the sky; one that starts in it or crosses into it before the sky does
