@@ -313,8 +313,7 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
         rtcIntersect1(embree_->skyScene, &plain, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
-        tfar = rh.ray.tfar;
-        if (crossesSolid(r.from, r.from + r.direction * tfar)) return {};
+        tfar = rh.ray.tfar;  // the structural solid test waits until the casters leave it open
     } else if (!skyRecords_.empty()) {
         RTCRay ray = makeRay(r, tfar);
         rtcOccluded1(embree_->skyScene, &plain, &ray);
@@ -328,30 +327,30 @@ Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     RTCRay ray = makeRay(r, tfar);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
-    if (!r.toSky && !r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * r.tfar)) return {};
+    // Open rays still stop at structural solid: sun rays up to their sky, the others to their end.
+    if (!r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * (r.toSky ? tfar : r.tfar))) return {};
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
 
 namespace {
 
-// Whether the open point-light segments among `traced` (ids index `rays`) cannot enter solid,
-// told by one walk of the hull of their ends for all of them.
-bool openSegmentsClear(const std::function<bool(std::span<const Vec3>)>& hullClearOfSolid,
-                       std::span<const ShadowRay> rays, const RTCRay* traced, size_t count) {
-    if (!hullClearOfSolid) return false;
-    // One hull walk costs about what a few segment walks do.
-    constexpr size_t kMinSegments = 4;
-    std::array<Vec3, 128> ends;  // both ends of a whole chunk of rays
-    size_t numEnds = 0;
-    for (size_t k = 0; k < count && numEnds + 2 <= ends.size(); ++k) {
-        const ShadowRay& r = rays[traced[k].id];
-        if (traced[k].tfar < 0 || r.toSky || r.clearOfSolid) continue;
-        ends[numEnds++] = r.from;
-        ends[numEnds++] = r.from + r.direction * r.tfar;
+// Both ends of the segments of one chunk of rays that still need the structural solid test.
+struct ChunkSegments {
+    std::array<Vec3, 128> ends;
+    size_t count = 0;
+    void add(Vec3 from, Vec3 to) {
+        if (count + 2 > ends.size()) return;
+        ends[count++] = from;
+        ends[count++] = to;
     }
-    if (numEnds < 2 * kMinSegments) return false;
-    return hullClearOfSolid(std::span<const Vec3>(ends.data(), numEnds));
-}
+    // Whether none of them can enter solid, told by one walk of the hull of their ends (only
+    // asked for a few segments or more: one hull walk costs about what a few segment walks do).
+    bool clear(const std::function<bool(std::span<const Vec3>)>& hullClearOfSolid) const {
+        constexpr size_t kMinSegments = 4;
+        return hullClearOfSolid && count >= 2 * kMinSegments &&
+               hullClearOfSolid(std::span<const Vec3>(ends.data(), count));
+    }
+};
 
 }  // namespace
 
@@ -414,8 +413,6 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
             const int wanted = rays[rh.ray.id].skyIndex;
             if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escapes without meeting the sky
             if (wanted >= 0 && skyRecords_[rh.hit.geomID].skyIndex != wanted) continue;
-            const ShadowRay& r = rays[rh.ray.id];
-            if (crossesSolid(r.from, r.from + r.direction * rh.ray.tfar)) continue;
             occlusionBuffer[numOcclusion++] = rh.ray;  // tfar now ends at the sky surface
         }
     }
@@ -429,15 +426,27 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
-    // Segments that Embree leaves open still stop at structural solid (sun rays were tested up to
-    // their sky above): the tree walk only for the rays that need it, and none when the hull of
-    // their ends is clear.
-    static_assert(kBatchChunk <= 64, "openSegmentsClear holds both ends of a chunk's rays");
-    const bool clear = openSegmentsClear(hullClearOfSolid_, rays, occlusionBuffer, numOcclusion);
+    // Segments that Embree leaves open still stop at structural solid (sun rays up to their sky,
+    // whose distance their tfar now holds): the tree walk only for the rays that need it, and none
+    // when the hull of their ends is clear (sun and point-light segments apart: one long sun prism
+    // would spoil the point lights' hull).
+    static_assert(kBatchChunk <= 64, "ChunkSegments holds both ends of a chunk's rays");
+    ChunkSegments toSky, toPoint;
+    auto segmentEnd = [&](size_t k) {
+        const ShadowRay& r = rays[occlusionBuffer[k].id];
+        return r.from + r.direction * (r.toSky ? occlusionBuffer[k].tfar : r.tfar);
+    };
+    for (size_t k = 0; k < numOcclusion; ++k) {
+        const ShadowRay& r = rays[occlusionBuffer[k].id];
+        if (occlusionBuffer[k].tfar >= 0 && !r.clearOfSolid) (r.toSky ? toSky : toPoint).add(r.from, segmentEnd(k));
+    }
+    const bool skyClear = toSky.clear(hullClearOfSolid_), pointClear = toPoint.clear(hullClearOfSolid_);
     for (size_t k = 0; k < numOcclusion; ++k) {
         if (occlusionBuffer[k].tfar < 0) continue;
         const ShadowRay& r = rays[occlusionBuffer[k].id];
-        if (!clear && !r.toSky && !r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * r.tfar)) continue;
+        if (!r.clearOfSolid && !(r.toSky ? skyClear : pointClear) &&
+            crossesSolid(r.from, segmentEnd(k)))
+            continue;
         out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
     }
     if (hits.empty()) return;
