@@ -54,6 +54,7 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
     vfsOptions.game = common.game;
     for (const std::string& p : common.basePaths) vfsOptions.basePaths.emplace_back(p);
     if (!common.fsGame.empty()) vfsOptions.gameDirs.push_back(common.fsGame);
+    vfsOptions.baseGame = common.baseGame;
     if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
     vfsOptions.mapPath = ctx.bspPath;
     ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
