@@ -52,7 +52,8 @@ OptionTable<CommonOptions> buildCommonTable() {
                              "priority",
                              kImplemented, "gamename", "none"));
     t.push_back(custom<O>({"-fs_basegame"}, {{ArgKind::Text, "gamename", {}}}, 1, "per game",
-                          "Overrides default game directory name", kNotImplemented, [](O&, std::span<const ArgValue>) {}));
+                          "Overrides default game directory name", kImplemented,
+                          [](O& o, std::span<const ArgValue> v) { o.baseGame = v[0].text; }));
     t.push_back(custom<O>({"-fs_home"}, {{ArgKind::Text, "dir", {}}}, 1, "$HOME",
                           "Specifies where the user home directory is on Linux", kNotImplemented,
                           [](O&, std::span<const ArgValue>) {}));

@@ -13,6 +13,7 @@ struct CommonOptions {
     std::string game = "quake3";           // -game
     std::vector<std::string> basePaths;    // -fs_basepath, repeatable
     std::string fsGame;                    // -fs_game
+    std::string baseGame;                  // -fs_basegame; empty = the -game profile's folder
     std::string homePath;                  // -fs_homepath
     std::string connect;                   // -connect host:port
     bool force = false;                    // -force
