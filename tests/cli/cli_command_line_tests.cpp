@@ -15,7 +15,7 @@ std::string splitError(const Args& args) {
 TEST(CliCommandLine, CommonOptionsAndStage) {
     CommonOptions common;
     cli::CommandLine line = split({"-v", "-threads", "4", "-fs_basepath", "/a", "-fs_basepath", "/b", "-fs_game",
-                                   "mod", "-fs_homepath", "/h", "-game", "QuakeLive", "-force", "-light", "-fast",
+                                   "mod", "-fs_basegame", "baseoa", "-fs_homepath", "/h", "-game", "QuakeLive", "-force", "-light", "-fast",
                                    "-samples", "2", "maps/x.map"},
                                   &common);
     EXPECT_FALSE(line.help);
@@ -26,6 +26,7 @@ TEST(CliCommandLine, CommonOptionsAndStage) {
     EXPECT_EQ(common.threads, 4);
     EXPECT_EQ(common.basePaths, (std::vector<std::string>{"/a", "/b"}));
     EXPECT_EQ(common.fsGame, "mod");
+    EXPECT_EQ(common.baseGame, "baseoa");
     EXPECT_EQ(common.homePath, "/h");
     EXPECT_EQ(common.game, "quakelive");
     EXPECT_TRUE(common.force);
