@@ -114,6 +114,31 @@ TEST(LightmapPack, CollapseAndNoCollapse) {
     EXPECT_EQ(q.pages.size(), 1u);
 }
 
+// A twin's texels that its master lacks are stored with the master's (q3map2 MergeBSPLuxels), so
+// no other lightmap can take them; texels both use hold the mean of the two.
+TEST(LightmapPack, TwinsMergeIntoTheirMaster) {
+    LightmapBlock left = gradient(4, 4, 0), right = gradient(4, 4, 0);
+    left.used.assign(16, 0);
+    right.used.assign(16, 0);
+    for (int y = 0; y < 4; ++y) {
+        left.used[size_t(y) * 4] = left.used[size_t(y) * 4 + 1] = 1;    // columns 0 and 1
+        right.used[size_t(y) * 4 + 1] = right.used[size_t(y) * 4 + 2] = 1;  // columns 1 and 2
+    }
+    right.texels[1] = {uint8_t(left.texels[1][0] + 3), left.texels[1][1], left.texels[1][2]};  // (1, 0)
+    LightmapBlock other = gradient(1, 4, 200, "z");  // placed after the twins
+    std::vector<LightmapBlock> blocks = {left, right, other};
+    const PackedLightmaps p = packLightmaps(blocks, slow(4));
+    ASSERT_EQ(p.placements[1].twinOf, 0);
+    ASSERT_EQ(p.pages.size(), 1u);
+    // Column 2 belongs to the twin: the other block takes column 3, the first one free for it.
+    EXPECT_EQ(p.placements[2].x, 3);
+    const auto& page = p.pages[0];
+    auto red = [&](int x, int y) { return int(page[size_t(y * 4 + x) * 3]); };
+    EXPECT_EQ(red(2, 1), right.texels[6][0]);
+    EXPECT_EQ(red(1, 0), left.texels[1][0] + 1);  // mean of the two, rounded down
+    EXPECT_EQ(red(0, 0), left.texels[0][0]);
+}
+
 TEST(LightmapPack, UnusedTexelsMayOverlap) {
     LightmapBlock big = gradient(8, 8, 0);
     big.used.assign(64, 0);

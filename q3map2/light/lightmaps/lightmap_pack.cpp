@@ -183,6 +183,22 @@ bool blocksMatchKnown(const LightmapBlock& a, bool solidA, const Rgb8& colorA, c
     return true;
 }
 
+// q3map2 MergeBSPLuxels: a lightmap taking a twin keeps the twin's texels where it has none of its
+// own and the mean of both where both have one, so the shared texels cover both surfaces and later
+// comparisons see the merged lightmap.
+void mergeTwinTexels(LightmapBlock& master, const LightmapBlock& twin) {
+    if (master.used.empty()) return;  // every texel is used already: nothing to take, means only
+    for (size_t i = 0; i < master.texels.size(); ++i) {
+        if (!texelUsed(twin, i)) continue;
+        if (!master.used[i]) {
+            master.texels[i] = twin.texels[i];
+            master.used[i] = 1;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) master.texels[i][c] = uint8_t((int(master.texels[i][c]) + twin.texels[i][c]) / 2);
+    }
+}
+
 }  // namespace
 
 bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b) {
@@ -226,7 +242,8 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         colors[i] = solidColor(b);
     }
 
-    // Identical lightmaps share the texels of the first one.
+    // Identical lightmaps share the texels of the first one, which takes theirs in (merged copies).
+    std::vector<LightmapBlock> merged(blocks.begin(), blocks.end());
     std::vector<int> twin(blocks.size(), -1);
     if (options.collapse) {
         // Only blocks alike in these keys can match (solid ones by colour, others by size): the
@@ -243,8 +260,10 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
                 if (twin[i] >= 0) continue;
                 for (size_t c = a + 1; c < members.size(); ++c) {
                     const size_t j = members[c];
-                    if (twin[j] < 0 && blocksMatchKnown(blocks[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
-                        twin[j] = int(i);
+                    if (twin[j] >= 0 || !blocksMatchKnown(merged[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
+                        continue;
+                    twin[j] = int(i);
+                    if (!solid[i]) mergeTwinTexels(merged[i], blocks[j]);
                 }
             }
     }
@@ -263,8 +282,9 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     for (size_t index : order) {
         const LightmapBlock& b = blocks[index];
         const bool isSolid = solid[index] != 0;
+        // q3map2's early page test counts the texels of the lightmap before any twin merged in.
         const int needed = usedTexels(b, isSolid);
-        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(b);
+        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(merged[index]);
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
             const Page& page = pages[p];
@@ -308,7 +328,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             pageIndex = int(pages.size()) - 1;
             px = py = 0;
         }
-        stamp(pages[size_t(pageIndex)], pageSize, b, isSolid, px, py);
+        stamp(pages[size_t(pageIndex)], pageSize, merged[index], isSolid, px, py);
         packed.placements[index] = {pageIndex, px, py, isSolid ? 1 : b.width, isSolid ? 1 : b.height, isSolid, -1};
     }
     for (size_t i = 0; i < blocks.size(); ++i) {
