@@ -139,6 +139,45 @@ TEST(LightmapPack, TwinsMergeIntoTheirMaster) {
     EXPECT_EQ(red(0, 0), left.texels[0][0]);
 }
 
+// A block carrying its light, with the bytes `options` make of it.
+LightmapBlock lightBlock(int w, int h, float base, const PackOptions& options) {
+    LightmapBlock b;
+    b.width = w;
+    b.height = h;
+    for (int i = 0; i < w * h; ++i) {
+        b.light.push_back(Vec3::splat(base + 20.0f * float(i)));
+        b.texels.push_back(colorToBytes(b.light.back(), 1.0f, options.color));
+    }
+    return b;
+}
+
+// q3map2 finds solid lightmaps and twins on the light, before -compensate halves it into bytes:
+// its tolerances (3 per channel, 0.0625 for solids) span fewer bytes then.
+TEST(LightmapPack, TwinsAndSolidsAreFoundOnLight) {
+    PackOptions o = slow(16);
+    o.color.compensate = 2;
+    const LightmapBlock a = lightBlock(3, 3, 10, o);
+    LightmapBlock b = a;
+    b.light[8] += Vec3::splat(4);  // 4 units apart: 2 bytes, which bytes alone would let match
+    b.texels[8] = colorToBytes(b.light[8], 1.0f, o.color);
+    ASSERT_TRUE(blocksMatch(a, b));
+    std::vector<LightmapBlock> twins = {a, b};
+    EXPECT_EQ(packLightmaps(twins, o).placements[1].twinOf, -1);
+    twins[1].light[8] = a.light[8] + Vec3::splat(2);  // within 3: twins, stored with the mean
+    EXPECT_EQ(packLightmaps(twins, o).placements[1].twinOf, 0);
+
+    LightmapBlock flat = lightBlock(3, 3, 10, o);
+    for (size_t i = 0; i < flat.light.size(); ++i) {
+        flat.light[i] = Vec3::splat(i % 2 ? 10.5f : 10.0f);  // one byte (5) everywhere
+        flat.texels[i] = colorToBytes(flat.light[i], 1.0f, o.color);
+    }
+    ASSERT_TRUE(blockIsSolid(flat));
+    std::vector<LightmapBlock> one = {flat};
+    EXPECT_FALSE(packLightmaps(one, o).placements[0].solid);  // 0.5 apart: more than 0.0625
+    for (Vec3& l : one[0].light) l = Vec3::splat(10.03f);
+    EXPECT_TRUE(packLightmaps(one, o).placements[0].solid);
+}
+
 TEST(LightmapPack, UnusedTexelsMayOverlap) {
     LightmapBlock big = gradient(8, 8, 0);
     big.used.assign(64, 0);
