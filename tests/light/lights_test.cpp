@@ -224,6 +224,19 @@ TEST(WorldLighting, Keys) {
     EXPECT_FALSE(w.keepLights);
 }
 
+// The worldspawn colour scales the ambient and minimum lights as written, not normalised to a
+// brightest channel of 1 (oacmpdm10's worldspawn).
+TEST(WorldLighting, ColorIsNotNormalised) {
+    WorldLighting w =
+        readWorldLighting(entity({{"classname", "worldspawn"}, {"ambient", "2"}, {"_color", "0.87 0.87 0.5"}}));
+    EXPECT_NEAR(w.ambient.x, 1.74f, 1e-5);
+    EXPECT_NEAR(w.ambient.y, 1.74f, 1e-5);
+    EXPECT_NEAR(w.ambient.z, 1.0f, 1e-5);
+    // A colour of zero length means white.
+    w = readWorldLighting(entity({{"classname", "worldspawn"}, {"_minlight", "3"}, {"_color", "0 0 0"}}));
+    EXPECT_EQ(w.minLight, (Vec3{3, 3, 3}));
+}
+
 TEST(SunLights, ShaderSunSamplesAndScale) {
     LightScales scales;
     scales.skyScale = 2;

@@ -114,6 +114,70 @@ TEST(LightmapPack, CollapseAndNoCollapse) {
     EXPECT_EQ(q.pages.size(), 1u);
 }
 
+// A twin's texels that its master lacks are stored with the master's (q3map2 MergeBSPLuxels), so
+// no other lightmap can take them; texels both use hold the mean of the two.
+TEST(LightmapPack, TwinsMergeIntoTheirMaster) {
+    LightmapBlock left = gradient(4, 4, 0), right = gradient(4, 4, 0);
+    left.used.assign(16, 0);
+    right.used.assign(16, 0);
+    for (int y = 0; y < 4; ++y) {
+        left.used[size_t(y) * 4] = left.used[size_t(y) * 4 + 1] = 1;    // columns 0 and 1
+        right.used[size_t(y) * 4 + 1] = right.used[size_t(y) * 4 + 2] = 1;  // columns 1 and 2
+    }
+    right.texels[1] = {uint8_t(left.texels[1][0] + 3), left.texels[1][1], left.texels[1][2]};  // (1, 0)
+    LightmapBlock other = gradient(1, 4, 200, "z");  // placed after the twins
+    std::vector<LightmapBlock> blocks = {left, right, other};
+    const PackedLightmaps p = packLightmaps(blocks, slow(4));
+    ASSERT_EQ(p.placements[1].twinOf, 0);
+    ASSERT_EQ(p.pages.size(), 1u);
+    // Column 2 belongs to the twin: the other block takes column 3, the first one free for it.
+    EXPECT_EQ(p.placements[2].x, 3);
+    const auto& page = p.pages[0];
+    auto red = [&](int x, int y) { return int(page[size_t(y * 4 + x) * 3]); };
+    EXPECT_EQ(red(2, 1), right.texels[6][0]);
+    EXPECT_EQ(red(1, 0), left.texels[1][0] + 1);  // mean of the two, rounded down
+    EXPECT_EQ(red(0, 0), left.texels[0][0]);
+}
+
+// A block carrying its light, with the bytes `options` make of it.
+LightmapBlock lightBlock(int w, int h, float base, const PackOptions& options) {
+    LightmapBlock b;
+    b.width = w;
+    b.height = h;
+    for (int i = 0; i < w * h; ++i) {
+        b.light.push_back(Vec3::splat(base + 20.0f * float(i)));
+        b.texels.push_back(colorToBytes(b.light.back(), 1.0f, options.color));
+    }
+    return b;
+}
+
+// q3map2 finds solid lightmaps and twins on the light, before -compensate halves it into bytes:
+// its tolerances (3 per channel, 0.0625 for solids) span fewer bytes then.
+TEST(LightmapPack, TwinsAndSolidsAreFoundOnLight) {
+    PackOptions o = slow(16);
+    o.color.compensate = 2;
+    const LightmapBlock a = lightBlock(3, 3, 10, o);
+    LightmapBlock b = a;
+    b.light[8] += Vec3::splat(4);  // 4 units apart: 2 bytes, which bytes alone would let match
+    b.texels[8] = colorToBytes(b.light[8], 1.0f, o.color);
+    ASSERT_TRUE(blocksMatch(a, b));
+    std::vector<LightmapBlock> twins = {a, b};
+    EXPECT_EQ(packLightmaps(twins, o).placements[1].twinOf, -1);
+    twins[1].light[8] = a.light[8] + Vec3::splat(2);  // within 3: twins, stored with the mean
+    EXPECT_EQ(packLightmaps(twins, o).placements[1].twinOf, 0);
+
+    LightmapBlock flat = lightBlock(3, 3, 10, o);
+    for (size_t i = 0; i < flat.light.size(); ++i) {
+        flat.light[i] = Vec3::splat(i % 2 ? 10.5f : 10.0f);  // one byte (5) everywhere
+        flat.texels[i] = colorToBytes(flat.light[i], 1.0f, o.color);
+    }
+    ASSERT_TRUE(blockIsSolid(flat));
+    std::vector<LightmapBlock> one = {flat};
+    EXPECT_FALSE(packLightmaps(one, o).placements[0].solid);  // 0.5 apart: more than 0.0625
+    for (Vec3& l : one[0].light) l = Vec3::splat(10.03f);
+    EXPECT_TRUE(packLightmaps(one, o).placements[0].solid);
+}
+
 TEST(LightmapPack, UnusedTexelsMayOverlap) {
     LightmapBlock big = gradient(8, 8, 0);
     big.used.assign(64, 0);

@@ -284,17 +284,24 @@ TEST(Dirt, SkyFaceInFrontOfSolidDoesNotDarken) {
     EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0, 1.5f, &tree), 1.0f);
 }
 
-TEST(DirtStage, VertexLitSurfaceIsDarkenedNearTheWall) {
-    // Vertex-lit tiles on the floor: one with vertexes 8 and 24 units from the wall, one in the open.
-    // With -dirty the first loses light at every vertex, the second keeps the ambient.
+// The corner (floor, wall at x = 0, sky wall at x = 512) under ambient 100, with a 16 x 16
+// vertex-lit tile from `tile` (surface 3).
+bsp::Bsp cornerWithVertexTile(Vec3 tile) {
     bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/sky", "textures/test/vertex"});
     quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);
     quality::addQuad(b, {0, 0, 0}, {0, 0, 256}, {0, 512, 0}, 1);
     quality::addQuad(b, {512, 0, 0}, {0, 512, 0}, {0, 0, 256}, 2);
-    for (float x : {8.0f, 248.0f}) {
-        quality::addQuad(b, {x, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 3);
-        b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;  // as -bsp leaves it
-    }
+    quality::addQuad(b, tile, {0, 16, 0}, {16, 0, 0}, 3);
+    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;  // as -bsp leaves it
+    return b;
+}
+
+TEST(DirtStage, VertexLitSurfaceIsDarkenedNearTheWall) {
+    // Vertex-lit tiles on the floor: one with vertexes 8 and 24 units from the wall, one in the open.
+    // With -dirty the first loses light at every vertex, the second keeps the ambient.
+    bsp::Bsp b = cornerWithVertexTile({8, 200, 0.5f});
+    quality::addQuad(b, {248, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 3);
+    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;
     quality::finish(b, {{"_ambient", "100"}});
     const auto path = quality::writeScene(b, "vertexdirt", kShaders);
     ASSERT_EQ(quality::runLight(path, {}), 0);
@@ -319,12 +326,7 @@ TEST(DirtStage, VertexLitSurfaceIsDarkenedNearTheWall) {
 TEST(DirtStage, VertexDirtIsTakenAtTheVertexNotWhereTheSearchEnds) {
     // Ambient light only: a darkened vertex is never brighter than the ambient, so the search tries
     // every nudged position and keeps the last; the dirt is still the one at the vertex itself.
-    bsp::Bsp b = quality::emptyBsp({"textures/test/floor", "textures/test/wall", "textures/test/sky", "textures/test/vertex"});
-    quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);
-    quality::addQuad(b, {0, 0, 0}, {0, 0, 256}, {0, 512, 0}, 1);
-    quality::addQuad(b, {512, 0, 0}, {0, 512, 0}, {0, 0, 256}, 2);
-    quality::addQuad(b, {2, 200, 0.5f}, {0, 16, 0}, {16, 0, 0}, 3);
-    b.surfaces.back().lightmapNum = bsp::kLightmapByVertex;
+    bsp::Bsp b = cornerWithVertexTile({2, 200, 0.5f});
     quality::finish(b, {{"_ambient", "100"}});
     const auto path = quality::writeScene(b, "vertexdirtorigin", kShaders);
     ASSERT_EQ(quality::runLight(path, {"-dirty"}), 0);
@@ -341,6 +343,34 @@ TEST(DirtStage, VertexDirtIsTakenAtTheVertexNotWhereTheSearchEnds) {
             EXPECT_GT(dirtForSample(last, {0, 0, 1}, scene, DirtSettings{}, dirtSeed(last)), atVertex + 0.02f);
         }
     }
+}
+
+TEST(DirtStage, VertexDirtRaysStopAtStructuralSolid) {
+    // The corner with the wall's BSP (structural solid behind x = 0) and a vertex-lit tile whose
+    // near vertexes lie half a unit from the wall: their steep rays meet the wall within the
+    // inhibit radius, and count because they enter the solid, as they do for luxels.
+    bsp::Bsp b = cornerWithVertexTile({0.5f, 200, 0.5f});
+    const bsp::Bsp tree = wallTreeBsp();
+    b.planes = tree.planes;
+    b.nodes = tree.nodes;
+    b.leafs = tree.leafs;
+    quality::finish(b, {{"_ambient", "100"}});
+    const auto path = quality::writeScene(b, "vertexdirtsolid", kShaders);
+    ASSERT_EQ(quality::runLight(path, {"-dirty"}), 0);
+    const bsp::Bsp dirty = bsp::readBsp(path);
+    HitScene scene(cornerScene(), {});
+    const bsp::Surface& s = dirty.surfaces[3];
+    int near = 0;
+    for (int v = 0; v < s.numVerts; ++v) {
+        const bsp::DrawVert& dv = dirty.drawVerts[static_cast<size_t>(s.firstVert + v)];
+        const Vec3 xyz = Vec3::fromArray(dv.xyz);
+        if (xyz.x > 1) continue;
+        ++near;
+        EXPECT_NEAR(dv.color[0], 100 * expectedDirt(0.5f, 128, 1, 1), 1.0f) << "vertex " << v;
+        EXPECT_GT(100 * dirtForSample(xyz, {0, 0, 1}, scene, DirtSettings{}, dirtSeed(xyz)), dv.color[0] + 5.0f)
+            << "surfaces alone darken less";
+    }
+    EXPECT_EQ(near, 2);
 }
 
 TEST(DirtStage, NoDirtyShaderKeepsItsLight) {

@@ -143,10 +143,10 @@ LightmapBlock styleZeroBlock(const LightContext& ctx, const SurfaceLight& s, con
     block.height = s.height;
     const LightmapLayer* zero = s.layer(0);
     block.texels.resize(size_t(s.width) * size_t(s.height));
-    for (size_t i = 0; i < block.texels.size(); ++i) {
-        const Vec3 c = vmax(zero ? zero->color[i] : Vec3{}, ctx.world.minLight);
-        block.texels[i] = colorToBytes(c, shader.lightmapBrightness, ctx.color);
-    }
+    block.light = zero ? zero->color : std::vector<Vec3>(block.texels.size());
+    block.brightness = shader.lightmapBrightness;
+    for (size_t i = 0; i < block.texels.size(); ++i)
+        block.texels[i] = colorToBytes(vmax(block.light[i], ctx.world.minLight), block.brightness, ctx.color);
     if (deluxe) {
         block.directionTexels = encodeDeluxels(ctx.bsp, s, *deluxe);
         if (ctx.options.debugDeluxe) block.texels = block.directionTexels;  // -debugdeluxe: look at them
@@ -203,6 +203,8 @@ StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bo
     // Styled and deluxe pages address the same texels as their style-0 block: every block keeps
     // its own full-size texels (q3map2 forces -nocollapse for styles and for deluxe maps).
     pack.collapse = !o.noCollapse && styled.empty() && !deluxe;
+    pack.color = ctx.color;
+    pack.minLight = ctx.world.minLight;
     PackedLightmaps packed = packLightmaps(blocks, pack);
     if (deluxe) interleaveDirectionPages(packed, blocks);
     applyPackedLightmaps(ctx.bsp, blocks, packed);

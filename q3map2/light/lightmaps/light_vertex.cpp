@@ -46,7 +46,7 @@ struct VertexTracer {
 
     float dirtAt(Vec3 xyz, Vec3 normal) const {
         if (!dirt) return 1.0f;
-        return dirtForSample(xyz, normal, *dirt->scene, dirt->dirt, dirtSeed(xyz), env.settings.ignoreNear);
+        return dirtForSample(xyz, normal, *dirt->scene, dirt->dirt, dirtSeed(xyz), env.settings.ignoreNear, dirt->tree);
     }
 
     Vec3 lightAt(Vec3 origin, Vec3 normal, int cluster, float dirtFactor) const {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <system_error>
 #include <tuple>
@@ -119,7 +121,7 @@ void blockedColumns(const Page& page, std::span<const TexelRun> runs, int y, int
     }
 }
 
-void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, int y) {
+void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, Rgb8 solidTexel, int x, int y) {
     auto put = [&](int px, int py, const Rgb8& c) {
         const size_t o = size_t(py) * pageSize + px;
         if (!page.used[o]) --page.freeTexels;
@@ -128,7 +130,7 @@ void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, int x, 
         for (int k = 0; k < 3; ++k) page.rgb[o * 3 + size_t(k)] = c[k];
     };
     if (solid) {
-        put(x, y, solidColor(b));
+        put(x, y, solidTexel);
         return;
     }
     for (int sy = 0; sy < b.height; ++sy)
@@ -183,6 +185,153 @@ bool blocksMatchKnown(const LightmapBlock& a, bool solidA, const Rgb8& colorA, c
     return true;
 }
 
+// q3map2 MergeBSPLuxels: a lightmap taking a twin keeps the twin's texels where it has none of its
+// own and the mean of both where both have one, so the shared texels cover both surfaces and later
+// comparisons see the merged lightmap.
+void mergeTwinTexels(LightmapBlock& master, const LightmapBlock& twin) {
+    if (master.used.empty()) return;  // every texel is used already: nothing to take, means only
+    for (size_t i = 0; i < master.texels.size(); ++i) {
+        if (!texelUsed(twin, i)) continue;
+        if (!master.used[i]) {
+            master.texels[i] = twin.texels[i];
+            master.used[i] = 1;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) master.texels[i][c] = uint8_t((int(master.texels[i][c]) + twin.texels[i][c]) / 2);
+    }
+}
+
+// The solid state and colour of a block, and the blocks it is compared with, on bytes or (when
+// every block carries it) on light.
+struct CollapseState {
+    std::vector<LightmapBlock> merged;  // the blocks, masters holding their twins' texels
+    std::vector<uint8_t> solid;
+    std::vector<Rgb8> solidTexel;       // the stored texel of a solid block
+    std::vector<Vec3> solidLight;       // light mode: q3map2's solid colour (the lowest light)
+    std::vector<int> twin;              // master of each block, -1 = stored itself
+};
+
+Vec3 absolute(Vec3 v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+
+bool carriesLight(const LightmapBlock& b) { return b.light.size() == b.texels.size() && !b.texels.empty(); }
+
+Rgb8 lightToTexel(Vec3 light, float brightness, const PackOptions& o) {
+    return colorToBytes(vmax(light, o.minLight), brightness, o.color);
+}
+
+// q3map2's solid test on light: every used texel within 0.0625 of the others in each channel (or a
+// lightmap of at most 2 x 2); the solid colour is the lowest light.
+constexpr float kSolidEpsilon = 0.0625f;
+bool lightIsSolid(const LightmapBlock& b, Vec3& lowest) {
+    Vec3 lo = Vec3::splat(std::numeric_limits<float>::max()), hi = Vec3::splat(-std::numeric_limits<float>::max());
+    bool any = false;
+    for (size_t i = 0; i < b.light.size(); ++i) {
+        if (!texelUsed(b, i)) continue;
+        any = true;
+        lo = vmin(lo, b.light[i]);
+        hi = vmax(hi, b.light[i]);
+    }
+    lowest = any ? lo : Vec3{};
+    if (b.width <= 2 && b.height <= 2) return true;
+    return !any || maxComponent(hi - lo) <= kSolidEpsilon;
+}
+
+// q3map2 CompareBSPLuxels on light: equal brightness and solid state; solid colours within the solid
+// epsilon; otherwise the same size and, over the texels both use, every channel within 3 and the
+// mean difference (checked as it accumulates) within the luxel tolerance.
+bool lightMatches(const CollapseState& st, size_t a, size_t b) {
+    const LightmapBlock& la = st.merged[a];
+    const LightmapBlock& lb = st.merged[b];
+    if (la.brightness != lb.brightness || st.solid[a] != st.solid[b]) return false;
+    if (st.solid[a]) return maxComponent(absolute(st.solidLight[a] - st.solidLight[b])) < kSolidEpsilon;
+    if (la.width != lb.width || la.height != lb.height) return false;
+    constexpr double kLuxelTolerance = 0.0025;
+    constexpr double kColorFraction = 0.001302083;  // 1 / 3 / 256, as q3map2 rounds it
+    double delta = 0.0, total = 0.0;
+    for (size_t i = 0; i < la.light.size(); ++i) {
+        total += 1.0;
+        if (!texelUsed(la, i) || !texelUsed(lb, i)) continue;
+        const Vec3 d = absolute(la.light[i] - lb.light[i]);
+        if (maxComponent(d) >= 3.0f) return false;
+        delta += (double(d.x) + double(d.y) + double(d.z)) * kColorFraction;
+        if (delta / total > kLuxelTolerance) return false;
+    }
+    return true;
+}
+
+// q3map2 MergeBSPLuxels on light: the master takes the twin's light where it has none and the mean
+// where both have some (solid ones: the mean colour); its bytes follow.
+void mergeTwinLight(CollapseState& st, size_t master, size_t twin, const PackOptions& o) {
+    LightmapBlock& m = st.merged[master];
+    if (st.solid[master]) {
+        st.solidLight[master] = (st.solidLight[master] + st.solidLight[twin]) * 0.5f;
+        st.solidTexel[master] = lightToTexel(st.solidLight[master], m.brightness, o);
+        return;
+    }
+    const LightmapBlock& t = st.merged[twin];
+    if (m.used.empty()) m.used.assign(m.texels.size(), 1);
+    for (size_t i = 0; i < m.light.size(); ++i) {
+        if (!texelUsed(t, i)) continue;
+        m.light[i] = m.used[i] ? (m.light[i] + t.light[i]) * 0.5f : t.light[i];
+        m.used[i] = 1;
+        m.texels[i] = lightToTexel(m.light[i], m.brightness, o);
+    }
+}
+
+// Finds the twins of every block, in block order as q3map2 walks its raw lightmaps: each block not
+// yet a twin takes every later one that matches it (merged as it goes). Only blocks alike in a key
+// can match (solid ones all together, others by size): the search runs within each key.
+CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOptions& o) {
+    CollapseState st;
+    st.merged.assign(blocks.begin(), blocks.end());
+    const size_t n = blocks.size();
+    st.solid.assign(n, 0);
+    st.solidTexel.assign(n, Rgb8{});
+    st.solidLight.assign(n, Vec3{});
+    st.twin.assign(n, -1);
+    const bool onLight = n > 0 && std::all_of(blocks.begin(), blocks.end(), carriesLight);
+    for (size_t i = 0; i < n; ++i) {
+        const LightmapBlock& b = blocks[i];
+        if (onLight) {
+            // -nocollapse also keeps small and uniform lightmaps at full size.
+            st.solid[i] = o.collapse && lightIsSolid(b, st.solidLight[i]);
+            st.solidTexel[i] = lightToTexel(st.solidLight[i], b.brightness, o);
+        } else {
+            st.solid[i] = o.collapse && blockIsSolid(b);
+            st.solidTexel[i] = solidColor(b);
+        }
+    }
+    if (!o.collapse) return st;
+    std::map<std::tuple<bool, int, int, int>, std::vector<size_t>> groups;
+    for (size_t i = 0; i < n; ++i) {
+        const Rgb8 c = onLight ? Rgb8{} : st.solidTexel[i];  // light: solid colours within epsilon of any byte
+        groups[st.solid[i] ? std::make_tuple(true, int(c[0]), int(c[1]), int(c[2]))
+                           : std::make_tuple(false, blocks[i].width, blocks[i].height, 0)]
+            .push_back(i);
+    }
+    for (const auto& [key, members] : groups)
+        for (size_t a = 0; a < members.size(); ++a) {
+            const size_t i = members[a];
+            if (st.twin[i] >= 0) continue;
+            for (size_t c = a + 1; c < members.size(); ++c) {
+                const size_t j = members[c];
+                if (st.twin[j] >= 0) continue;
+                if (onLight) {
+                    if (!lightMatches(st, i, j)) continue;
+                    st.twin[j] = int(i);
+                    mergeTwinLight(st, i, j, o);
+                } else {
+                    if (!blocksMatchKnown(st.merged[i], st.solid[i], st.solidTexel[i], blocks[j], st.solid[j],
+                                          st.solidTexel[j]))
+                        continue;
+                    st.twin[j] = int(i);
+                    if (!st.solid[i]) mergeTwinTexels(st.merged[i], blocks[j]);
+                }
+            }
+        }
+    return st;
+}
+
 }  // namespace
 
 bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b) {
@@ -211,8 +360,6 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     packed.customSize = !options.external && pageSize != options.gamePageSize;
     packed.placements.assign(blocks.size(), BlockPlacement{});
 
-    std::vector<uint8_t> solid(blocks.size(), 0);
-    std::vector<Rgb8> colors(blocks.size());
     for (size_t i = 0; i < blocks.size(); ++i) {
         const LightmapBlock& b = blocks[i];
         if (b.width <= 0 || b.height <= 0 || b.texels.size() != size_t(b.width) * b.height ||
@@ -221,33 +368,12 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         if (b.width > pageSize || b.height > pageSize)
             throw CompileError("lightmap block " + std::to_string(i) + " (" + std::to_string(b.width) + "x" +
                                std::to_string(b.height) + ") does not fit a " + std::to_string(pageSize) + " page");
-        // -nocollapse also keeps small and uniform lightmaps at full size.
-        solid[i] = options.collapse && blockIsSolid(b);
-        colors[i] = solidColor(b);
     }
-
-    // Identical lightmaps share the texels of the first one.
-    std::vector<int> twin(blocks.size(), -1);
-    if (options.collapse) {
-        // Only blocks alike in these keys can match (solid ones by colour, others by size): the
-        // pairwise search runs within each group, in block order, with the same outcome.
-        std::map<std::tuple<bool, int, int, int>, std::vector<size_t>> groups;
-        for (size_t i = 0; i < blocks.size(); ++i) {
-            const auto key = solid[i] ? std::make_tuple(true, int(colors[i][0]), int(colors[i][1]), int(colors[i][2]))
-                                      : std::make_tuple(false, blocks[i].width, blocks[i].height, 0);
-            groups[key].push_back(i);
-        }
-        for (const auto& [key, members] : groups)
-            for (size_t a = 0; a < members.size(); ++a) {
-                const size_t i = members[a];
-                if (twin[i] >= 0) continue;
-                for (size_t c = a + 1; c < members.size(); ++c) {
-                    const size_t j = members[c];
-                    if (twin[j] < 0 && blocksMatchKnown(blocks[i], solid[i], colors[i], blocks[j], solid[j], colors[j]))
-                        twin[j] = int(i);
-                }
-            }
-    }
+    // Identical lightmaps share the texels of the first one, which takes theirs in.
+    const CollapseState collapsed = collapseTwins(blocks, options);
+    const std::vector<uint8_t>& solid = collapsed.solid;
+    const std::vector<LightmapBlock>& merged = collapsed.merged;
+    const std::vector<int>& twin = collapsed.twin;
 
     std::vector<size_t> order;
     for (size_t i = 0; i < blocks.size(); ++i)
@@ -263,8 +389,9 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     for (size_t index : order) {
         const LightmapBlock& b = blocks[index];
         const bool isSolid = solid[index] != 0;
+        // q3map2's early page test counts the texels of the lightmap before any twin merged in.
         const int needed = usedTexels(b, isSolid);
-        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(b);
+        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(merged[index]);
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
             const Page& page = pages[p];
@@ -308,7 +435,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             pageIndex = int(pages.size()) - 1;
             px = py = 0;
         }
-        stamp(pages[size_t(pageIndex)], pageSize, b, isSolid, px, py);
+        stamp(pages[size_t(pageIndex)], pageSize, merged[index], isSolid, collapsed.solidTexel[index], px, py);
         packed.placements[index] = {pageIndex, px, py, isSolid ? 1 : b.width, isSolid ? 1 : b.height, isSolid, -1};
     }
     for (size_t i = 0; i < blocks.size(); ++i) {

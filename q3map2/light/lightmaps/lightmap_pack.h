@@ -21,6 +21,10 @@ struct PackOptions {
     bool external = false;    // -external: pages go to maps/<map>/lm_NNNN.tga
     bool collapse = true;     // false with -nocollapse (also disables solid lightmaps)
     bool fastAllocate = true; // false with -slowallocate: test every position of every page
+    // How blocks that carry their light (LightmapBlock::light) turn it into bytes after collapsing:
+    // colorToBytes(max(light, minLight), block brightness, color), as q3map2 stores its luxels.
+    ColorOptions color;
+    Vec3 minLight;
 };
 
 // One raw lightmap after ColorToBytes, ready to be placed.
@@ -29,6 +33,12 @@ struct LightmapBlock {
     std::vector<Rgb8> texels;    // width * height, row-major
     std::vector<Rgb8> directionTexels;  // -deluxe: the light direction of every texel; empty = none
     std::vector<uint8_t> used;   // per texel: 0 = carries nothing (may overlap other blocks); empty = all used
+    // The light of every texel before its conversion to bytes (q3map2's BSP luxels), minimum light
+    // not applied. When every block carries it, solid lightmaps and twins are found on it with
+    // q3map2's tolerances (which are in light units, not bytes: -compensate and -gamma change how
+    // many bytes they span), and merged twins are converted again (PackOptions::color).
+    std::vector<Vec3> light;
+    float brightness = 1;        // q3map_lightmapBrightness of the shader: blocks of different ones never collapse
     std::string sortKey;         // shader name of the first surface (q3map2 places blocks sorted by it)
     std::vector<int> surfaces;   // BSP surfaces drawn with this lightmap
     // Per surface (same order), per draw vertex: lightmap coordinate in block texel units

@@ -216,12 +216,20 @@ struct LuxelSampler {
         bool mapped[4] = {false, false, false, false};
         int numMapped = 0, lighted = 0;
         Vec3 total;
+        // q3map2 tests the PVS of every sub-sample with the first one's cluster (its trace takes the
+        // first element of the cluster array): when the first lies in solid, the others it keeps
+        // see no light but the sun's, and darken the luxel's mean.
+        int firstCluster = -1;
         for (int k = 0; k < 4; ++k) {
             const bool plusS = k & 1, plusT = k & 2;
             origins[k] = origin + stepS[plusS] * (plusS ? bias : -bias) + stepT[plusT] * (plusT ? bias : -bias);
             const int cluster = ctx.tree && !ctx.bsp.nodes.empty() ? freeCluster(origins[k], 2 * kLuxelEpsilon) : 0;
+            if (k == 0) firstCluster = cluster;
             if (cluster < 0) continue;
-            values[k] = lightAt(light, SamplePoint{origins[k], luxel.normal, ctx.tree ? cluster : -1, twoSided});
+            if (firstCluster < 0 && light.type != LightType::Sun)
+                values[k] = Vec3{};
+            else
+                values[k] = lightAt(light, SamplePoint{origins[k], luxel.normal, ctx.tree ? firstCluster : -1, twoSided});
             mapped[k] = true;
             ++numMapped;
             total += values[k];

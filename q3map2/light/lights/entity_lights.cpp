@@ -126,9 +126,11 @@ Light makeControlledLight(const bsp::Entity& e, int entityNum, const std::vector
 
 WorldLighting readWorldLighting(const bsp::Entity& ws) {
     WorldLighting w;
+    // q3map2 scales the ambient and minimum lights by the worldspawn _color as written: unlike a
+    // light entity's colour it is not normalised (oacmpdm10's "0.87 0.87 0.5" with ambient 2 gives
+    // 1.74 1.74 1.0, stored as 1 1 1, not 2 2 1).
     Vec3 color = vecKey(ws, {"_color"}).value_or(Vec3{1, 1, 1});
-    if (maxComponent(color) <= 0) color = {1, 1, 1};
-    color = normalizeColor(color);
+    if (length(color) == 0) color = {1, 1, 1};
     w.ambient = color * floatKey(ws, {"_ambient", "ambient"}).value_or(0);
     float minLight = floatKey(ws, {"_minlight"}).value_or(0);
     w.minLight = color * minLight;
