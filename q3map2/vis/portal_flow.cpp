@@ -1,6 +1,7 @@
 #include "portal_flow.h"
 
 #include "cluster_vis.h"
+#include "flow_beam.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -30,12 +31,7 @@ struct FlowLevel {
     const Winding* pass = nullptr;  // nullptr at the base portal
     Winding sourceBuffer;
     std::array<Winding, 2> passBuffers;
-    // The separators between the previous level's source and pass, one per edge at most, found
-    // edge by edge as candidates need them and kept for the level's other candidates: a
-    // candidate clipped away early never pays for the rest.
-    std::array<std::array<Plane, kMaxSeparators>, 2> separators;
-    std::array<std::array<bool, kMaxSeparators>, 2> separatorFound;
-    std::array<int, 2> edgesDone{};
+    Beam beam;  // between source and pass, once the walk arrives at this level
 };
 
 // A portal of a cluster as the walk first looks at it, packed per cluster so that rejecting a
@@ -49,10 +45,13 @@ struct LeafExit {
 struct FlowShared {
     const VisGraph& graph;
     const std::vector<std::vector<LeafExit>>& exits;  // per cluster, removed portals left out
+    const std::vector<int>& home;                     // per portal: the cluster whose list holds it
+    const std::vector<Box>& clusterBounds;
     const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
     const Passages* passages;
     FlowMode mode;
     BitMatrix& clusterVis;           // per portal: the clusters it sees (the result)
+    const BitMatrix& known;          // per cluster: what earlier waves found it sees
     const std::vector<int>& waveOf;  // per portal
 };
 
@@ -71,12 +70,17 @@ public:
 
     void run() {
         FlowLevel& head = level(0);
-        std::copy_n(s_.floodClusters.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
+        const uint64_t* flood = s_.floodClusters.row(static_cast<size_t>(baseIndex_));
+        std::copy_n(flood, words_, head.mightSee.begin());
         head.first = 0;
         head.last = words_;
         head.source = &base_.winding;
         head.pass = nullptr;
         scratch_.onStack.assign(s_.graph.leafs.size(), 0);
+        // What earlier waves found the base's cluster sees is marked from the start: the walk
+        // then only looks for the rest, and the cluster's row gets the same bits either way.
+        const uint64_t* known = s_.known.row(static_cast<size_t>(s_.home[static_cast<size_t>(baseIndex_)]));
+        for (size_t w = 0; w < words_; ++w) vis_[w] |= known[w] & flood[w];
         setBit(vis_, static_cast<size_t>(base_.leaf));
         enter(baseIndex_, 0);
     }
@@ -117,20 +121,30 @@ private:
         return s_.mode == FlowMode::Portal ? nullptr : s_.passages->row(from, k);
     }
 
-    // Chops `pass` by the separators of `next` on one side (0: edges of the previous source with
-    // points of the previous pass; 1: the other way round, flipped); nullptr when nothing is left.
-    const Winding* clipBySeparators(const FlowLevel& prev, FlowLevel& next, int side, const VisPortal& candidate,
-                                    const Winding* pass) {
-        const Winding& from = side == 0 ? *prev.source : *prev.pass;
-        const Winding& to = side == 0 ? *prev.pass : *prev.source;
-        for (int edge = 0; edge < from.count && pass; ++edge) {
-            if (edge == next.edgesDone[side]) {
-                next.separatorFound[side][static_cast<size_t>(edge)] =
-                    findSeparator(from, to, edge, side == 1, next.separators[side][static_cast<size_t>(edge)]);
-                ++next.edgesDone[side];
+    // Drops from `here.mightSee` the clusters not yet marked that no line of the beam can reach:
+    // their portals lie wholly behind a separator, behind the plane of the portal just passed or
+    // behind the base portal. False when no unmarked cluster is left.
+    bool dropUnreachable(FlowLevel& here, const Plane& passPlane) const {
+        uint64_t more = 0;
+        for (size_t w = here.first; w < here.last; ++w) {
+            uint64_t open = here.mightSee[w] & ~vis_[w];
+            for (uint64_t bits = open; bits; bits &= bits - 1) {
+                const size_t c = w * 64 + static_cast<size_t>(std::countr_zero(bits));
+                const Box& box = s_.clusterBounds[c];
+                bool shut = boxBehind(passPlane, box) || boxBehind(base_.plane, box);
+                for (int k = 0; k < here.beam.count && !shut; ++k) shut = boxBehind(here.beam.planes[static_cast<size_t>(k)], box);
+                if (shut) open &= ~(uint64_t{1} << (c & 63));
             }
-            if (!next.separatorFound[side][static_cast<size_t>(edge)]) continue;
-            const Plane& plane = next.separators[side][static_cast<size_t>(edge)];
+            here.mightSee[w] = (here.mightSee[w] & vis_[w]) | open;
+            more |= open;
+        }
+        return more != 0;
+    }
+
+    // Chops `pass` by the beam of `prev`; nullptr when nothing is left.
+    static const Winding* clipByBeam(const FlowLevel& prev, FlowLevel& next, const VisPortal& candidate, const Winding* pass) {
+        for (int k = 0; k < prev.beam.count && pass; ++k) {
+            const Plane& plane = prev.beam.planes[static_cast<size_t>(k)];
             const float d = plane.distanceTo(candidate.origin);
             if (d < -candidate.radius) return nullptr;  // entirely behind
             if (d > candidate.radius) continue;         // entirely in front
@@ -157,21 +171,25 @@ private:
         else if (!(cur.source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
             return nullptr;
         if (!prev.pass) return pass;  // the second cluster can only be blocked if coplanar
-        pass = clipBySeparators(prev, cur, 0, p, pass);
-        return pass ? clipBySeparators(prev, cur, 1, p, pass) : nullptr;
+        return clipByBeam(prev, cur, p, pass);
     }
 
     // Walk on into the cluster portal `from` leads to; `depth` is the level of the state on arrival.
     void enter(int from, size_t depth) {
-        const size_t leaf = static_cast<size_t>(s_.graph.portals[static_cast<size_t>(from)].leaf);
+        const VisPortal& through = s_.graph.portals[static_cast<size_t>(from)];
+        const size_t leaf = static_cast<size_t>(through.leaf);
         // Clusters are convex (q3map2 merges only convex ones): a line never enters one twice.
         if (scratch_.onStack[leaf]) return;
+        FlowLevel& here = level(depth);
+        if (here.pass) {
+            buildBeam(*here.source, *here.pass, here.beam);
+            if (!dropUnreachable(here, through.plane)) return;
+        }
+        // Levels are held by pointer: deeper calls may add levels without moving these two.
+        const FlowLevel& prev = here;
+        FlowLevel& cur = level(depth + 1);
         scratch_.onStack[leaf] = 1;
-        level(depth + 1).edgesDone = {0, 0};
         for (const LeafExit& exit : s_.exits[leaf]) {
-            // `level` may grow the scratch in deeper calls: fetch the levels again each time.
-            FlowLevel& prev = *scratch_.levels[depth];
-            FlowLevel& cur = *scratch_.levels[depth + 1];
             if (!prev.mightSeeCluster(static_cast<size_t>(exit.leaf))) continue;
             const int pnum = exit.portal;
             // Nothing new to find behind p: its own cluster is in the set, so this also keeps
@@ -180,6 +198,7 @@ private:
             const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
             if (s_.mode == FlowMode::Passage) {
                 setBit(vis_, static_cast<size_t>(p.leaf));
+                cur.pass = nullptr;
                 enter(pnum, depth + 1);
                 continue;
             }
@@ -200,6 +219,17 @@ private:
     size_t words_;
     int currentWave_;
 };
+
+// Adds a finished portal's clusters to what its cluster is known to see, and its cluster to what
+// each of them is known to see (a line of sight runs both ways).
+void learn(BitMatrix& known, int home, const uint64_t* seen) {
+    uint64_t* row = known.row(static_cast<size_t>(home));
+    for (size_t w = 0; w < known.words(); ++w) {
+        row[w] |= seen[w];
+        for (uint64_t bits = seen[w]; bits; bits &= bits - 1)
+            setBit(known.row(w * 64 + static_cast<size_t>(std::countr_zero(bits))), static_cast<size_t>(home));
+    }
+}
 
 }  // namespace
 
@@ -228,15 +258,19 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
 
     const BitMatrix floodClusters = portalClusterSets(graph, base.flood);
     BitMatrix clusterVis(n, static_cast<size_t>(graph.clusterCount));
+    BitMatrix known(graph.leafs.size(), static_cast<size_t>(graph.clusterCount));
     std::vector<std::vector<LeafExit>> exits(graph.leafs.size());
+    std::vector<int> home(n, 0);
     for (size_t l = 0; l < graph.leafs.size(); ++l) {
         const std::vector<int>& portals = graph.leafs[l].portals;
         for (size_t k = 0; k < portals.size(); ++k) {
             const VisPortal& p = graph.portals[static_cast<size_t>(portals[k])];
+            home[static_cast<size_t>(portals[k])] = static_cast<int>(l);
             if (!p.removed) exits[l].push_back({portals[k], p.leaf, static_cast<int>(k)});
         }
     }
-    FlowShared shared{graph, exits, floodClusters, passages, options.mode, clusterVis, waveOf};
+    const std::vector<Box> clusterBounds = clusterPortalBounds(graph);
+    FlowShared shared{graph, exits, home, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
         // Within a wave the largest first, so that the longest walks do not start last.
@@ -253,6 +287,12 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
                 if (advance) advance();
             }
         }, tbb::simple_partitioner());
+        // Passages alone see through more than the separators let through: told both ways, their
+        // loose rows would loosen each other further.
+        if (options.mode == FlowMode::Passage) continue;
+        for (int portal : wave)
+            if (!graph.portals[static_cast<size_t>(portal)].removed)
+                learn(known, home[static_cast<size_t>(portal)], clusterVis.row(static_cast<size_t>(portal)));
     }
     return clusterVis;
 }
