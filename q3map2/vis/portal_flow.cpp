@@ -1,5 +1,6 @@
 #include "portal_flow.h"
 
+#include "cluster_knowledge.h"
 #include "cluster_vis.h"
 #include "flow_beam.h"
 
@@ -45,13 +46,12 @@ struct LeafExit {
 struct FlowShared {
     const VisGraph& graph;
     const std::vector<std::vector<LeafExit>>& exits;  // per cluster, removed portals left out
-    const std::vector<int>& home;                     // per portal: the cluster whose list holds it
     const std::vector<Box>& clusterBounds;
     const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
     const Passages* passages;
     FlowMode mode;
     BitMatrix& clusterVis;           // per portal: the clusters it sees (the result)
-    const BitMatrix& known;          // per cluster: what earlier waves found it sees
+    const ClusterKnowledge& known;   // what earlier waves found
     const std::vector<int>& waveOf;  // per portal
 };
 
@@ -71,16 +71,23 @@ public:
     void run() {
         FlowLevel& head = level(0);
         const uint64_t* flood = s_.floodClusters.row(static_cast<size_t>(baseIndex_));
+        // What earlier waves found about the base's cluster: the clusters known hidden from it
+        // are not looked for, those known visible are marked from the start (the cluster's row
+        // gets them either way).
         std::copy_n(flood, words_, head.mightSee.begin());
+        if (const int home = s_.known.home(baseIndex_); home >= 0) {
+            const uint64_t* possible = s_.known.possible(home);
+            const uint64_t* seen = s_.known.seen(home);
+            for (size_t w = 0; w < words_; ++w) {
+                head.mightSee[w] &= possible[w];
+                vis_[w] |= flood[w] & seen[w];
+            }
+        }
         head.first = 0;
         head.last = words_;
         head.source = &base_.winding;
         head.pass = nullptr;
         scratch_.onStack.assign(s_.graph.leafs.size(), 0);
-        // What earlier waves found the base's cluster sees is marked from the start: the walk
-        // then only looks for the rest, and the cluster's row gets the same bits either way.
-        const uint64_t* known = s_.known.row(static_cast<size_t>(s_.home[static_cast<size_t>(baseIndex_)]));
-        for (size_t w = 0; w < words_; ++w) vis_[w] |= known[w] & flood[w];
         setBit(vis_, static_cast<size_t>(base_.leaf));
         enter(baseIndex_, 0);
     }
@@ -98,23 +105,34 @@ private:
     }
 
     // next = prev & mask [& passage]; true when next holds a cluster not yet marked visible.
+    // Most candidates have nothing new behind them: the words are only trimmed for those that do.
     bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
-        const uint64_t* m = mask(portal);
+        const uint64_t* __restrict in = prev.mightSee.data();
+        const uint64_t* __restrict m = mask(portal);
+        const uint64_t* __restrict seen = vis_;
+        uint64_t* __restrict out = next.mightSee.data();
+        const size_t begin = prev.first, end = prev.last;
         uint64_t more = 0;
-        size_t first = prev.last, last = prev.first;
-        for (size_t w = prev.first; w < prev.last; ++w) {
-            uint64_t v = prev.mightSee[w] & m[w];
-            if (passage) v &= passage[w];
-            next.mightSee[w] = v;
-            if (v) {
-                first = std::min(first, w);
-                last = w + 1;
+        if (passage) {
+            for (size_t w = begin; w < end; ++w) {
+                const uint64_t v = in[w] & m[w] & passage[w];
+                out[w] = v;
+                more |= v & ~seen[w];
             }
-            more |= v & ~vis_[w];
+        } else {
+            for (size_t w = begin; w < end; ++w) {
+                const uint64_t v = in[w] & m[w];
+                out[w] = v;
+                more |= v & ~seen[w];
+            }
         }
+        if (!more) return false;
+        size_t first = begin, last = end;
+        while (!out[first]) ++first;  // `more` holds a bit, so some word is non-zero
+        while (!out[last - 1]) --last;
         next.first = first;
-        next.last = std::max(first, last);
-        return more != 0;
+        next.last = last;
+        return true;
     }
 
     const uint64_t* passageRow(int from, size_t k) const {
@@ -220,17 +238,6 @@ private:
     int currentWave_;
 };
 
-// Adds a finished portal's clusters to what its cluster is known to see, and its cluster to what
-// each of them is known to see (a line of sight runs both ways).
-void learn(BitMatrix& known, int home, const uint64_t* seen) {
-    uint64_t* row = known.row(static_cast<size_t>(home));
-    for (size_t w = 0; w < known.words(); ++w) {
-        row[w] |= seen[w];
-        for (uint64_t bits = seen[w]; bits; bits &= bits - 1)
-            setBit(known.row(w * 64 + static_cast<size_t>(std::countr_zero(bits))), static_cast<size_t>(home));
-    }
-}
-
 }  // namespace
 
 std::vector<size_t> flowWaveBounds(size_t count) {
@@ -258,19 +265,17 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
 
     const BitMatrix floodClusters = portalClusterSets(graph, base.flood);
     BitMatrix clusterVis(n, static_cast<size_t>(graph.clusterCount));
-    BitMatrix known(graph.leafs.size(), static_cast<size_t>(graph.clusterCount));
     std::vector<std::vector<LeafExit>> exits(graph.leafs.size());
-    std::vector<int> home(n, 0);
     for (size_t l = 0; l < graph.leafs.size(); ++l) {
         const std::vector<int>& portals = graph.leafs[l].portals;
         for (size_t k = 0; k < portals.size(); ++k) {
             const VisPortal& p = graph.portals[static_cast<size_t>(portals[k])];
-            home[static_cast<size_t>(portals[k])] = static_cast<int>(l);
             if (!p.removed) exits[l].push_back({portals[k], p.leaf, static_cast<int>(k)});
         }
     }
     const std::vector<Box> clusterBounds = clusterPortalBounds(graph);
-    FlowShared shared{graph, exits, home, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
+    ClusterKnowledge known(graph);
+    FlowShared shared{graph, exits, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
         // Within a wave the largest first, so that the longest walks do not start last.
@@ -292,7 +297,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
         if (options.mode == FlowMode::Passage) continue;
         for (int portal : wave)
             if (!graph.portals[static_cast<size_t>(portal)].removed)
-                learn(known, home[static_cast<size_t>(portal)], clusterVis.row(static_cast<size_t>(portal)));
+                known.learn(portal, clusterVis.row(static_cast<size_t>(portal)));
     }
     return clusterVis;
 }

@@ -11,9 +11,9 @@
 // Two more cuts, both exact-conservative: at each step the clusters not yet marked whose portals
 // lie wholly behind one of the separators (or behind the portal just passed or the base portal)
 // leave the "might see" set, since no line of the chain can reach them however deep it goes
-// (flow_beam.h); and a walk starts with the clusters earlier waves found its cluster sees (by its
-// other portals, or seen from there: a line of sight runs both ways) marked, so it only looks for
-// the rest.
+// (flow_beam.h); and a walk only works on the pairs of clusters earlier waves left open
+// (cluster_knowledge.h): those known visible are marked from the start, those known hidden are
+// not looked for.
 //
 // Portals are done in waves along the order of their "might see" counts (smallest first); a
 // portal's walk prunes with the finished results of earlier waves and with the base flood of the
