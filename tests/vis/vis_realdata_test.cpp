@@ -12,7 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -146,7 +148,26 @@ TEST_P(VisFull, WithinOnePercentOfReferenceConservativeAndThreadIndependent) {
     expectConservative(two);
 }
 
-INSTANTIATE_TEST_SUITE_P(Maps, VisFull, ::testing::Values("oacmpdm1", "oacmpdm5"), paramName);
+// The suite samples two cheap maps; Q3MAP_VIS_FULL_MAPS=oacmpdm9,oacmpdm10 (or "all") adds others
+// by hand. The reference's full vis of the largest ones takes a quarter of an hour, once.
+std::vector<std::string> fullVisMaps() {
+    std::vector<std::string> maps{"oacmpdm1", "oacmpdm5"};
+    const char* env = std::getenv("Q3MAP_VIS_FULL_MAPS");
+    std::string extra = env ? env : "";
+    if (extra == "all") {
+        extra.clear();
+        for (const fs::path& source : q3::test::oacmpMapSourcesForRegistration()) extra += source.stem().string() + ",";
+    }
+    for (size_t start = 0; start < extra.size();) {
+        const size_t end = std::min(extra.find(',', start), extra.size());
+        const std::string name = extra.substr(start, end - start);
+        if (!name.empty() && std::find(maps.begin(), maps.end(), name) == maps.end()) maps.push_back(name);
+        start = end + 1;
+    }
+    return maps;
+}
+
+INSTANTIATE_TEST_SUITE_P(Maps, VisFull, ::testing::ValuesIn(fullVisMaps()), paramName);
 
 // The number before `label` on the line that ends with it ("   161 leaves merged"), or -1.
 int countBefore(const std::string& log, const std::string& label) {
