@@ -49,11 +49,11 @@ constexpr float kGridEpsilon = 0.0f;       // GRID_EPSILON: first point-in-solid
 constexpr float kNudgedEpsilon = -0.125f;  // VERTEX_EPSILON: test of nudged points
 }  // namespace
 
-std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges) {
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, const GridNudges& nudges) {
     if (!tree || !tree->hasNodes()) return PlacedGridPoint{origin, -1, false};
     const int cluster = tree->clusterForPointExt(origin, kGridEpsilon);
     if (cluster >= 0) return PlacedGridPoint{origin, cluster, false};
-    const std::optional<Vec3> free = tree->nudgeOutOfSolid(origin, nudges, kNudgedEpsilon);
+    const std::optional<Vec3> free = tree->nudgeOutOfSolid(origin, nudges.offsets, nudges.box, kNudgedEpsilon);
     if (!free) return std::nullopt;
     return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "bsp_tree.h"
 #include "light_contribution.h"
 #include "lights.h"
 #include "vec3.h"
@@ -47,17 +48,22 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
 
-class BspTree;
+// The nudges tried for grid points in solid (nearest first), with their box taken once.
+struct GridNudges {
+    std::vector<Vec3> offsets;
+    BspTree::OffsetBox box;
+    explicit GridNudges(std::vector<Vec3> nudges) : offsets(std::move(nudges)), box(BspTree::offsetBox(offsets)) {}
+};
 
-// Where a grid point is lit: its lattice position, or the first free nudge of it (`nudges`, nearest
-// first) when it starts in solid. `tree` null (or a BSP without nodes): every point is free, cluster
-// -1. nullopt: every nudge stays in solid.
+// Where a grid point is lit: its lattice position, or the first free nudge of it when it starts in
+// solid. `tree` null (or a BSP without nodes): every point is free, cluster -1. nullopt: every
+// nudge stays in solid.
 struct PlacedGridPoint {
     Vec3 origin;
     int cluster = -1;
     bool nudged = false;
 };
-std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges);
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, const GridNudges& nudges);
 
 // A grid to light: `bounds` points per axis at `mins` + index * `size`.
 struct GridLattice {

@@ -46,7 +46,7 @@ void lightGrid(LightContext& ctx, Log& log) {
     constexpr float kNudgeReach = 0.8f;  // of half a cell
     const Vec3 nudgeBox = layout.size * (0.5f * kNudgeReach);
     const float nudgeRadius = length(nudgeBox);
-    const std::vector<Vec3> nudges = nudgeOffsetsInBox(nudgeBox, 4);
+    const GridNudges nudges(nudgeOffsetsInBox(nudgeBox, 4));
     const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);

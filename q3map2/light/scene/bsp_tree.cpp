@@ -45,6 +45,32 @@ BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShader
         bytesPerCluster_ = header[1];
     }
     if (compactWalks) buildCompactTree();
+    buildLeafSolids();
+}
+
+void BspTree::buildLeafSolids() {
+    const size_t numLeafs = bsp_.leafs.size();
+    leafSolidStart_.assign(numLeafs + 1, 0);
+    for (size_t l = 0; l < numLeafs; ++l) {
+        leafSolidStart_[l] = uint32_t(leafSolids_.size());
+        const bsp::Leaf& leaf = bsp_.leafs[l];
+        if (leaf.cluster < 0) continue;  // clusterInLeaf answers -1 at once
+        for (int i = 0; i < leaf.numLeafBrushes; ++i) {
+            const int lb = leaf.firstLeafBrush + i;
+            if (lb < 0 || lb >= int(bsp_.leafBrushes.size())) continue;
+            const int b = bsp_.leafBrushes[lb];
+            if (!brushIsOpaque(b)) continue;
+            const bsp::Brush& brush = bsp_.brushes[b];
+            LeafSolid solid{b, uint32_t(solidPlanes_.size()), 0};
+            for (int k = 0; k < brush.numSides; ++k) {
+                const bsp::Plane& plane = bsp_.planes[bsp_.brushSides[brush.firstSide + k].planeNum];
+                solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist});
+            }
+            solid.numPlanes = uint32_t(solidPlanes_.size()) - solid.firstPlane;
+            leafSolids_.push_back(solid);
+        }
+    }
+    leafSolidStart_[numLeafs] = uint32_t(leafSolids_.size());
 }
 
 // One step of q3map2's TraceLine at a node: a segment whose ends lie at `front` and `back` from the
@@ -421,22 +447,21 @@ int BspTree::clusterForPointExt(Vec3 point, float epsilon) const {
 
 int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     if (leafNum < 0 || leafNum >= int(bsp_.leafs.size())) return -1;
-    const bsp::Leaf& leaf = bsp_.leafs[leafNum];
-    if (leaf.cluster < 0) return -1;
-    for (int i = 0; i < leaf.numLeafBrushes; ++i) {
-        const int lb = leaf.firstLeafBrush + i;
-        if (lb < 0 || lb >= int(bsp_.leafBrushes.size())) continue;
-        const int b = bsp_.leafBrushes[lb];
-        if (!brushIsOpaque(b)) continue;
-        const bsp::Brush& brush = bsp_.brushes[b];
+    const int cluster = bsp_.leafs[size_t(leafNum)].cluster;
+    if (cluster < 0) return -1;
+    // planeDistance's arithmetic: float inputs, double products and sums.
+    const double x = point.x, y = point.y, z = point.z, limit = epsilon;
+    for (uint32_t i = leafSolidStart_[size_t(leafNum)]; i < leafSolidStart_[size_t(leafNum) + 1]; ++i) {
+        const LeafSolid& solid = leafSolids_[i];
         bool inside = true;
-        for (int s = 0; s < brush.numSides && inside; ++s) {
-            const bsp::BrushSide& side = bsp_.brushSides[brush.firstSide + s];
-            if (planeDistance(bsp_.planes[side.planeNum], point) > epsilon) inside = false;
+        for (uint32_t k = solid.firstPlane; k < solid.firstPlane + solid.numPlanes && inside; ++k) {
+            const SidePlane& p = solidPlanes_[k];
+            if (double(p.normal[0]) * x + double(p.normal[1]) * y + double(p.normal[2]) * z - double(p.dist) > limit)
+                inside = false;
         }
-        if (inside) return -1 - b;
+        if (inside) return -1 - solid.brush;
     }
-    return leaf.cluster;
+    return cluster;
 }
 
 std::vector<Vec3> nudgeOffsets(float radius, float step) {
@@ -481,21 +506,35 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, float radius, float ste
     return nudgeOutOfSolid(point, nudgeOffsets(radius, step), epsilon);
 }
 
+BspTree::OffsetBox BspTree::offsetBox(std::span<const Vec3> offsets) {
+    OffsetBox box;
+    box.finite = !offsets.empty();
+    for (size_t i = 0; i < offsets.size(); ++i) {
+        const Vec3 o = offsets[i];
+        if (!std::isfinite(o.x) || !std::isfinite(o.y) || !std::isfinite(o.z)) box.finite = false;
+        box.lo = i == 0 ? o : vmin(box.lo, o);
+        box.hi = i == 0 ? o : vmax(box.hi, o);
+    }
+    return box;
+}
+
 std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon) const {
+    return nudgeOutOfSolid(point, offsets, offsetBox(offsets), epsilon);
+}
+
+std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, const OffsetBox& box,
+                                             float epsilon) const {
     // The candidates' box: while it lies wholly beyond 0.1 of a node plane on one side, every
     // candidate's walk takes that side, so all walks can start below. The margin covers the
     // rounding of box-corner distances against per-point ones many times over.
     int32_t start = 0;
-    bool boxed = !compact_.empty() && offsets.size() > 1;
+    const Vec3 boxLo = point + box.lo, boxHi = point + box.hi;
+    bool boxed = !compact_.empty() && offsets.size() > 1 && box.finite;
     float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (size_t i = 0; i < offsets.size() && boxed; ++i) {
-        const Vec3 c = point + offsets[i];
-        const float v[3] = {c.x, c.y, c.z};
-        for (int k = 0; k < 3; ++k) {
-            if (!std::isfinite(v[k])) boxed = false;
-            lo[k] = i == 0 ? v[k] : std::min(lo[k], v[k]);
-            hi[k] = i == 0 ? v[k] : std::max(hi[k], v[k]);
-        }
+    for (int k = 0; k < 3 && boxed; ++k) {
+        if (!std::isfinite(boxLo[k]) || !std::isfinite(boxHi[k])) boxed = false;
+        lo[k] = boxLo[k];
+        hi[k] = boxHi[k];
     }
     // Which children every candidate's walk can take at a node: 0 front, 1 back, 2 either.
     auto boxSide = [&](const CompactNode& n) {
