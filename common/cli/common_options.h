@@ -13,9 +13,11 @@ struct CommonOptions {
     std::string game = "quake3";           // -game
     std::vector<std::string> basePaths;    // -fs_basepath, repeatable
     std::string fsGame;                    // -fs_game
+    std::string baseGame;                  // -fs_basegame; empty = the game profile's folder
     std::string homePath;                  // -fs_homepath
     std::string connect;                   // -connect host:port
     bool force = false;                    // -force
+    int maxMapDrawSurfs = 0x20000;         // -maxmapdrawsurfs: draw surfaces -bsp may hold
     bool warningsAsErrors = false;         // -werror: a run with warnings fails (exit 1)
     std::filesystem::path statsPath;       // -stats FILE.json: machine-readable summary
     std::filesystem::path mapPath;         // the .bsp the map argument names (x.map and x give x.bsp)

@@ -1,5 +1,6 @@
 #include "bsp_brushes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string_view>
 
@@ -82,6 +83,7 @@ Brush brushFromMap(const map::MapBrush& source, int mapEntityNum, const ShaderTa
         side.exactPlane = {normal, dot(p0, normal)};
         const ShaderInfo& shader = lookUpShader(face.texture, shaders, out);
         side.shader = &shader;
+        side.face = &face;
         side.contentFlags = shader.contentFlags;
         side.surfaceFlags = shader.surfaceFlags;
         side.compileFlags = shader.compileFlags;
@@ -192,13 +194,13 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         const bool isGroup = !isWorld && equalsNoCase(ent.classname, "func_group");
         ent.origin = parseVectorKey(source.value("origin"));
         if (!options.noCurves)
-            for (const map::MapPatch& p : source.patches) ent.patches.push_back(&p);
+            for (const map::MapPatch& p : source.patches) ent.patches.push_back({&p, source.number});
         // Shaders are looked up in file order (brushes and patches interleaved): the first
         // spelling of a shader without a script names it.
         size_t nextPatch = 0;
         auto lookUpPatchShadersBefore = [&](int primitiveNum) {
-            for (; nextPatch < ent.patches.size() && ent.patches[nextPatch]->primitiveNum < primitiveNum; ++nextPatch)
-                lookUpShader(ent.patches[nextPatch]->texture, shaders, out);
+            for (; nextPatch < ent.patches.size() && ent.patches[nextPatch].patch->primitiveNum < primitiveNum; ++nextPatch)
+                lookUpShader(ent.patches[nextPatch].patch->texture, shaders, out);
         };
 
         bool haveOriginBrush = false;
@@ -237,11 +239,14 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
             (b.opaque ? opaque : translucent).push_back(std::move(b));
         }
         lookUpPatchShadersBefore(source.primitiveCount());
+        // q3map2 links each patch in front of the entity's list.
+        std::reverse(ent.patches.begin(), ent.patches.end());
         for (auto it = opaque.rbegin(); it != opaque.rend(); ++it) ent.brushes.push_back(std::move(*it));
         for (Brush& b : translucent) ent.brushes.push_back(std::move(b));
 
         if (haveOriginBrush) {
             ent.hasOriginBrush = true;
+            ent.originBrushCenter = originBrushCenter;
             ent.origin = ent.origin + originBrushCenter;
             offsetBrushes(ent.brushes, originBrushCenter, out.planes);
         }
@@ -260,7 +265,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
             }
             world.insert(world.begin(), std::make_move_iterator(head.begin()), std::make_move_iterator(head.end()));
             // q3map2 prepends the group's patches to the world's.
-            std::vector<const map::MapPatch*>& worldPatches = out.entities.front().patches;
+            std::vector<PatchRef>& worldPatches = out.entities.front().patches;
             worldPatches.insert(worldPatches.begin(), ent.patches.begin(), ent.patches.end());
             continue;
         }

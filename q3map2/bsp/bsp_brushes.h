@@ -29,6 +29,8 @@ struct BrushSide {
     uint32_t surfaceFlags = 0;
     uint32_t compileFlags = 0;
     bool bevel = false;
+    bool culled = false;  // hidden inside another brush or behind a coincident face (cullSides)
+    const map::BrushFace* face = nullptr;  // the .map face (texture projection); nullptr for bevels
     Winding winding;      // empty for bevels and sides clipped away
     Winding visibleHull;  // the part of the winding in open leaves (set by clipSidesIntoTree)
 };
@@ -45,16 +47,24 @@ struct Brush {
     DBounds bounds;
 };
 
+// A patch and the .map entity it was written in (func_group patches join the world).
+struct PatchRef {
+    const map::MapPatch* patch = nullptr;
+    int mapEntityNum = 0;
+};
+
 struct BspEntity {
     const map::MapEntity* source = nullptr;
     int mapEntityNum = 0;
     std::string classname;
     // q3map2's order: opaque brushes first (latest first), then translucent ones in file order.
     std::vector<Brush> brushes;
-    // Patches (parsed, not yet tessellated), func_group ones moved here; none with -nocurves.
-    std::vector<const map::MapPatch*> patches;
+    // Patches (parsed, not yet tessellated), func_group ones moved here; none with -nocurves. In
+    // q3map2's order: each entity's latest first, func_groups' ahead of the world's.
+    std::vector<PatchRef> patches;
     DVec3 origin;  // "origin" key (0 0 0 when absent), moved by an origin brush
     bool hasOriginBrush = false;
+    DVec3 originBrushCenter;  // brushes were moved by minus this; textures stay where the map put them
 
     // Point entities start the flood that finds the map's inside.
     bool isPointEntity() const;

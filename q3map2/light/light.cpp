@@ -55,6 +55,7 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
     for (const std::string& p : common.basePaths) vfsOptions.basePaths.emplace_back(p);
     if (!common.fsGame.empty()) vfsOptions.gameDirs.push_back(common.fsGame);
     if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
+    vfsOptions.baseGame = common.baseGame;
     vfsOptions.mapPath = ctx.bspPath;
     ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
     ctx.shaderTable = std::make_unique<ShaderTable>(loadShaderTable(*ctx.vfs, log));

@@ -1,0 +1,162 @@
+#include "bsp_compile.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "brush_filter.h"
+#include "count_line.h"
+#include "face_subdivide.h"
+#include "fog_volumes.h"
+#include "log.h"
+#include "patch_surfaces.h"
+#include "script.h"
+#include "shader_info.h"
+#include "srf_writer.h"
+#include "structure_emit.h"
+#include "surface_filter.h"
+#include "surface_triangles.h"
+#include "visible_hull.h"
+
+namespace q3::bspstage {
+namespace {
+
+
+struct ModelContext {
+    const CompileInputs& in;
+    const BspCompileOptions& options;
+    const FaceContext& faces;
+    const std::vector<EntitySurfaceParams>& params;
+    const MapFogs& fogs;
+    BspBuilder& builder;
+    std::vector<int>& brushOutputs;
+    std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
+    Log& log;
+};
+
+// The steps both kinds of model share once their faces exist: tessellation, classification,
+// filtering into the tree and writing (q3map2 SubdivideFaceSurfaces ... FilterDrawsurfsIntoTree,
+// FixBrushSides, EndModel).
+void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& surfaces, Tree& tree) {
+    const BspEntity& entity = c.in.map.entities[entityIndex];
+    if (c.options.subdivide) subdivideFaceSurfaces(surfaces, entity, c.faces, c.params);
+    c.log.debug("--- ClassifyEntitySurfaces ---");
+    for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
+    c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (int(c.written.size() + surfaces.size()) > c.options.maxDrawSurfaces)
+        throw CompileError("max_map_draw_surfs (" + std::to_string(c.options.maxDrawSurfaces) +
+                           ") exceeded, consider -maxmapdrawsurfs to increase");
+
+    c.log.debug("--- FilterDrawsurfsIntoTree ---");
+    TriangulationCounts triangles;
+    int references = 0, emitted = 0;
+    for (DrawSurface& ds : surfaces) {
+        if (ds.verts.empty()) continue;
+        if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
+        biasSurfaceTextures(ds);
+        if (entityIndex != 0 && !ds.shader->noFog) {
+            DBounds bounds;
+            for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
+            ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);
+        }
+        const int refs = filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
+        if (refs == 0) continue;
+        if (ds.kind == SurfaceKind::Face) {
+            triangulateFace(ds, &triangles);
+            classifySurface(ds, c.in.map.planes, c.options.classify);
+        }
+        c.builder.emitSurface(ds, c.options.emit);
+        references += refs;
+        ++emitted;
+        c.written.push_back(std::make_unique<DrawSurface>(ds));
+    }
+    c.log.debug(countLine(references, "references"));
+    c.log.debug(countLine(emitted, "emitted drawsurfs"));
+    c.log.debug(countLine(triangles.strips, "stripped face surfaces"));
+    c.log.debug(countLine(triangles.fans, "fanned face surfaces"));
+    c.builder.fixBrushSides(surfaces);
+    c.builder.endModel(tree);
+}
+
+void warnUnsupportedModels(const CompileInputs& in, Log& log) {
+    for (const map::MapEntity& e : in.file.entities)
+        if (equalsNoCase(e.classname(), "misc_model"))
+            log.warning("Entity " + std::to_string(e.number) +
+                        " (misc_model): models are not baked into the BSP by this build yet; skipped");
+}
+
+}  // namespace
+
+CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options, Log& log) {
+    CompiledBsp out;
+    LoadedMap& map = in.map;
+    const std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
+    const FaceContext faces{map.planes, in.textures, options.brushSnap};
+    BspBuilder builder(map, in.shaders);
+    MapFogs fogs;
+    if (options.fog) {
+        log.debug("--- CreateMapFogs ---");
+        fogs = createMapFogs(map, in.shaders, log);
+    }
+    std::vector<int> brushOutputs(map.entities.size(), -1);
+    std::vector<std::unique_ptr<DrawSurface>> written;
+    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, log};
+    warnUnsupportedModels(in, log);
+
+    for (size_t i = 0; i < map.entities.size(); ++i) {
+        BspEntity& e = map.entities[i];
+        if (e.brushes.empty() && e.patches.empty()) continue;
+        log.debug("############### model " + std::to_string(builder.bsp().models.size()) + " ###############");
+        builder.beginModel(e);
+        PatchCounts patchCounts;
+        std::vector<DrawSurface> surfaces = patchSurfaces(e, in.shaders, map.planes, params, log, &patchCounts);
+        log.debug(countLine(patchCounts.patches, "patches"));
+        log.debug(countLine(patchCounts.lodGroups, "patch LOD groups"));
+        if (i == 0) {
+            out.world = buildWorldStructure(map, options.world, log);
+            if (out.world.stoppedForLeakTest) {
+                out.stoppedForLeakTest = true;
+                return out;
+            }
+            // Without an entity in open space q3map2 never clips the sides: the world has no faces.
+            if (out.world.flood != FloodResult::Empty) {
+                const CullCounts culled = cullSides(e.brushes, map.planes);
+                log.debug(countLine(culled.hidden, "hidden faces culled"));
+                log.debug(countLine(culled.coincident, "coincident faces culled"));
+                addFaceSurfaces(e, faces, params, surfaces);
+            }
+            builder.emitBrushes(e.brushes);
+            brushOutputs[i] = builder.brushOutput(0);
+            filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
+            if (options.fog) {
+                const FogCounts fogged = fogWorldSurfaces(surfaces, fogs, map, faces, params);
+                log.debug(countLine(fogged.faceFragments, "fog polygon fragments"));
+                log.debug(countLine(fogged.patchFragments, "fog patch fragments"));
+                log.debug(countLine(fogged.fogged, "fogged drawsurfs"));
+            }
+            finishModel(c, i, surfaces, out.world.tree);
+        } else {
+            const bool verbose = log.verbose();
+            if (!options.verboseEntities) log.setVerbose(false);
+            Tree tree = singleLeafTree(e);
+            cullSides(e.brushes, map.planes);
+            clipSidesIntoTree(e.brushes, tree, map.planes);
+            addFaceSurfaces(e, faces, params, surfaces);
+            builder.emitBrushes(e.brushes);
+            brushOutputs[i] = builder.brushOutput(0);
+            finishModel(c, i, surfaces, tree);
+            log.setVerbose(verbose);
+        }
+    }
+    log.debug(countLine(int(builder.bsp().models.size()), "bspModels in total"));
+    emitFogs(fogs, map, brushOutputs, builder, log);
+    builder.emitPlanes(map.planes);
+    builder.bsp().entities = bsp::unparseEntities(bspEntities(map, options.entities));
+
+    std::vector<const DrawSurface*> order;
+    for (const auto& ds : written) order.push_back(ds.get());
+    out.surfaceExtra = surfaceExtraText(order, options.classify.sampleSize, map);
+    out.bsp = std::move(builder.bsp());
+    return out;
+}
+
+}  // namespace q3::bspstage

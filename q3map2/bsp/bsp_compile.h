@@ -1,0 +1,49 @@
+// The -bsp pipeline after loading (q3map2 bsp.cpp ProcessModels, ProcessWorldModel,
+// ProcessSubModel): the world gets its tree, portals and areas; every model gets its patch and face
+// surfaces, fog, tessellation, classification, filtering into its leaves and the written lumps.
+#pragma once
+
+#include <string>
+
+#include "bsp_builder.h"
+#include "entity_lump.h"
+#include "face_surfaces.h"
+#include "surface_classify.h"
+#include "world_structure.h"
+
+namespace q3 {
+class Log;
+class ShaderTable;
+}  // namespace q3
+
+namespace q3::bspstage {
+
+struct BspCompileOptions {
+    WorldStructureOptions world;
+    ClassifyOptions classify;
+    SurfaceEmitOptions emit;
+    EntityLumpOptions entities;
+    bool brushSnap = true;      // off with -nobrushsnap
+    bool fog = true;            // off with -nofog
+    bool subdivide = true;      // off with -nosubdivide: tessSize ignored
+    bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
+    int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
+};
+
+struct CompiledBsp {
+    bsp::Bsp bsp;
+    WorldStructure world;     // .prt or .lin text
+    std::string surfaceExtra;  // .srf text
+    bool stoppedForLeakTest = false;  // -leaktest on a leaking map: nothing else to write
+};
+
+struct CompileInputs {
+    LoadedMap& map;
+    const map::MapFile& file;
+    const ShaderTable& shaders;
+    const TextureSizes& textures;
+};
+
+CompiledBsp compileBsp(const CompileInputs& inputs, const BspCompileOptions& options, Log& log);
+
+}  // namespace q3::bspstage

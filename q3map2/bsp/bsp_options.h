@@ -1,0 +1,38 @@
+// The -bsp command line (q3map2 bsp.cpp BSPMain, help.cpp HelpBsp): every q3map2 option, either
+// implemented or refused by name with a one-line message.
+#pragma once
+
+#include <string>
+
+#include "option_table.h"
+
+namespace q3::bspstage {
+
+struct BspOptions {
+    std::string tempName;        // -tempname: read the map from this file, deleted afterwards
+    bool noWater = false;        // -nowater
+    bool keepLights = false;     // -keeplights
+    bool keepModels = false;     // -keepmodels
+    bool noDetail = false;       // -nodetail
+    bool fullDetail = false;     // -fulldetail
+    bool noFog = false;          // -nofog
+    bool noSubdivide = false;    // -nosubdivide
+    bool leakTest = false;       // -leaktest
+    bool verboseEntities = false;  // -verboseentities
+    bool noCurves = false;       // -nocurves
+    bool noTJunc = false;        // -notjunc
+    int sampleSize = 16;         // -samplesize (at least 1)
+    int minSampleSize = 0;       // -minsamplesize (at least 1 when given)
+    float normalEpsilon = 0.00005f;  // -ne
+    float distanceEpsilon = 0.005f;  // -de
+    int maxLightmappedVerts = 64;    // -mv (at least 3)
+    bool noBrushSnap = false;    // -nobrushsnap
+    bool noHint = false;         // -nohint
+    bool noFlares = false;       // -noflares (flares are off for quake3 anyway)
+    bool alternateSplit = false;  // -altsplit
+    bool deep = false;           // -deep
+};
+
+const cli::OptionTable<BspOptions>& bspOptionTable();
+
+}  // namespace q3::bspstage

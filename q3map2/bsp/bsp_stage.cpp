@@ -1,0 +1,126 @@
+#include "bsp_stage.h"
+
+#include <chrono>
+#include <filesystem>
+#include <set>
+
+#include "bsp_compile.h"
+#include "bspfile.h"
+#include "file_io.h"
+#include "log.h"
+#include "map_file.h"
+#include "shader_info.h"
+#include "shader_loader.h"
+#include "vfs.h"
+
+namespace q3::bspstage {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<const ShaderInfo*> brushSideShaders(const LoadedMap& map) {
+    std::set<const ShaderInfo*> seen;
+    std::vector<const ShaderInfo*> out;
+    for (const BspEntity& e : map.entities)
+        for (const Brush& b : e.brushes)
+            for (const BrushSide& s : b.sides)
+                if (s.shader && seen.insert(s.shader).second) out.push_back(s.shader);
+    return out;
+}
+
+// The stage's own arguments (after the stage switch) from the recorded command line.
+std::vector<std::string> stageArguments(const std::string& commandLine) {
+    std::vector<std::string> words;
+    size_t pos = commandLine.find(' ');
+    while (pos != std::string::npos) {
+        const size_t next = commandLine.find(' ', pos + 1);
+        std::string word = commandLine.substr(pos + 1, next == std::string::npos ? std::string::npos : next - pos - 1);
+        if (!word.empty()) words.push_back(std::move(word));
+        pos = next;
+    }
+    return words;
+}
+
+BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& common) {
+    BspCompileOptions c;
+    c.world.deep = o.deep;
+    c.world.leakTest = o.leakTest;
+    c.world.alternateSplit = o.alternateSplit;
+    c.classify.sampleSize = o.sampleSize;
+    c.classify.minSampleSize = o.minSampleSize;
+    c.classify.maxSurfaceVerts = std::max(999, o.maxLightmappedVerts);
+    c.emit.maxLightmappedVerts = o.maxLightmappedVerts;
+    c.brushSnap = !o.noBrushSnap;
+    c.fog = !o.noFog;
+    c.subdivide = !o.noSubdivide;
+    c.verboseEntities = o.verboseEntities;
+    c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
+    c.entities.keepLights = o.keepLights;
+    c.entities.keepModels = o.keepModels;
+    c.entities.version = bsp::kCompilerVersion;
+    c.entities.stageArgs = stageArguments(common.commandLine);
+    return c;
+}
+
+}  // namespace
+
+int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log) {
+    const auto start = std::chrono::steady_clock::now();
+    fs::path bspPath = common.mapPath;
+    bspPath.replace_extension(".bsp");
+    fs::path mapPath = bspPath;
+    mapPath.replace_extension(".map");
+    log.info("--- BSP ---");
+    if (options.noTJunc) log.info("T-junction fixing disabled");
+
+    // q3map2 deletes the previous portal and leak files before anything else.
+    std::error_code ignored;
+    fs::remove(fs::path(bspPath).replace_extension(".prt"), ignored);
+    fs::remove(fs::path(bspPath).replace_extension(".lin"), ignored);
+
+    VfsOptions vfsOptions;
+    vfsOptions.game = common.game;
+    for (const std::string& p : common.basePaths) vfsOptions.basePaths.emplace_back(p);
+    if (!common.fsGame.empty()) vfsOptions.gameDirs.push_back(common.fsGame);
+    if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
+    vfsOptions.baseGame = common.baseGame;
+    vfsOptions.mapPath = bspPath;
+    Vfs vfs(vfsOptions, log);
+    const ShaderTable shaders = loadShaderTable(vfs, log);
+    log.info(std::to_string(shaders.size()) + " shaderInfo");
+
+    log.debug("--- LoadMapFile ---");
+    const fs::path source = options.tempName.empty() ? mapPath : fs::path(options.tempName);
+    log.info("entering " + source.string());
+    const map::MapFile file = map::loadMap(source);
+    MapLoadOptions load;
+    load.epsilons = {options.normalEpsilon, options.distanceEpsilon};
+    load.noDetail = options.noDetail;
+    load.fullDetail = options.fullDetail;
+    load.noWater = options.noWater;
+    load.noHint = options.noHint;
+    load.noCurves = options.noCurves;
+    LoadedMap map = loadMapForBsp(file, shaders, load, log);
+    log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
+    log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");
+    log.debug(std::to_string(map.counts.patches) + " patches");
+    log.info(std::to_string(map.counts.areaportals) + " areaportals");
+
+    const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
+    CompiledBsp compiled = compileBsp({map, file, shaders, textures}, compileOptions(options, common), log);
+
+    writeWorldStructureFiles(compiled.world, bspPath);
+    if (compiled.stoppedForLeakTest) return 0;
+    fs::path srfPath = bspPath;
+    srfPath.replace_extension(".srf");
+    log.info("Writing " + srfPath.string());
+    writeFileAtomic(srfPath, compiled.surfaceExtra);
+    log.info("Writing " + bspPath.string());
+    bsp::writeBsp(bspPath, compiled.bsp);
+    if (!options.tempName.empty()) fs::remove(options.tempName, ignored);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log.info(std::to_string(int(seconds)) + " seconds elapsed");
+    return 0;
+}
+
+}  // namespace q3::bspstage

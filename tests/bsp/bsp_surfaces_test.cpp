@@ -1,0 +1,270 @@
+// The draw surface steps of -bsp on hand-made faces and maps: triangulation, classification,
+// filtering, the .srf text, and whole compiles of small rooms.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "bsp_compile.h"
+#include "bsp_test_maps.h"
+#include "face_surfaces.h"
+#include "patch_surfaces.h"
+#include "srf_writer.h"
+#include "structure_emit.h"
+#include "surface_classify.h"
+#include "surface_filter.h"
+#include "surface_triangles.h"
+
+namespace q3::bspstage {
+namespace {
+
+const ShaderInfo& plainShader() {
+    static const ShaderInfo shader = makeImplicitShader("textures/base/wall");
+    return shader;
+}
+
+DrawSurface faceFrom(std::initializer_list<Vec3> points) {
+    DrawSurface ds;
+    ds.shader = &plainShader();
+    for (const Vec3& p : points) {
+        bsp::DrawVert v{};
+        p.toArray(v.xyz);
+        v.normal[2] = 1;
+        ds.verts.push_back(v);
+    }
+    return ds;
+}
+
+TEST(SurfaceTriangles, QuadStripStartsAtTheLowestVertexAndWalksBothEnds) {
+    // Lowest vertex is index 1: triangles (1, 3, 0) and (2, 3, 1), as q3map2 writes them.
+    DrawSurface ds = faceFrom({{64, 64, 0}, {0, 0, 0}, {0, 64, 0}, {64, 0, 0}});
+    TriangulationCounts counts;
+    triangulateFace(ds, &counts);
+    EXPECT_EQ(ds.indexes, (std::vector<int>{1, 3, 0, 2, 3, 1}));
+    EXPECT_EQ(counts.strips, 1);
+}
+
+TEST(SurfaceTriangles, SliverStripsFallBackToAFan) {
+    // Six points on a line: every strip has a triangle without the apex, a sliver. A fan around a
+    // new centre vertex replaces it.
+    DrawSurface ds = faceFrom({{0, 0, 0}, {32, 0, 0}, {64, 0, 0}, {96, 0, 0}, {128, 0, 0}, {160, 0, 0}, {80, 64, 0}});
+    TriangulationCounts counts;
+    triangulateFace(ds, &counts);
+    EXPECT_EQ(counts.fans, 1);
+    ASSERT_EQ(ds.verts.size(), 8u);
+    EXPECT_FLOAT_EQ(ds.verts[0].xyz[0], 80.0f);
+    EXPECT_EQ(ds.indexes.size(), 21u);
+    EXPECT_EQ((std::vector<int>(ds.indexes.end() - 3, ds.indexes.end())), (std::vector<int>{0, 7, 1}));
+}
+
+TEST(SurfaceTriangles, MinimumAngleAndArea) {
+    EXPECT_NEAR(triangleMinAngleSquaredSin({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 0.5, 1e-6);
+    EXPECT_NEAR(triangleArea2x({0, 0, 0}, {2, 0, 0}, {0, 3, 0}), 6.0, 1e-6);
+    EXPECT_EQ(triangleMinAngleSquaredSin({0, 0, 0}, {0, 0, 0}, {0, 1, 0}), 0.0);
+}
+
+TEST(SurfaceTriangles, VertexCacheOrderRotatesEachTriangleToItsSmallestIndex) {
+    std::vector<int> indexes;
+    for (int i = 0; i < 8; ++i) indexes.insert(indexes.end(), {i + 2, i + 1, 0});
+    std::vector<int> sorted = indexes;
+    optimizeForVertexCache(indexes);
+    for (size_t i = 0; i < indexes.size(); i += 3) {
+        EXPECT_LT(indexes[i], indexes[i + 1]);
+        EXPECT_LT(indexes[i], indexes[i + 2]);
+    }
+    std::vector<int> a = indexes, b = sorted;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b);  // same triangles, reordered
+    std::vector<int> small{2, 1, 0};
+    optimizeForVertexCache(small);
+    EXPECT_EQ(small, (std::vector<int>{2, 1, 0}));  // 16 indexes or fewer stay as they are
+}
+
+TEST(SurfaceClassify, LightmapAxisFollowsTheDominantComponent) {
+    EXPECT_EQ(lightmapAxisForNormal({0, 0, -1}), (Vec3{0, 0, -1}));
+    EXPECT_EQ(lightmapAxisForNormal({0.6f, 0.8f, 0}), (Vec3{0, 1, 0}));
+    EXPECT_EQ(lightmapAxisForNormal({0.7071f, 0, 0.7071f}), (Vec3{0, 0, 1}));  // Z wins ties
+    EXPECT_EQ(lightmapAxisForNormal({0, 0, 0}), (Vec3{0, 0, 0}));
+    EXPECT_TRUE(std::signbit(lightmapAxisForNormal({0, 0, -1}).x));  // printed as -0.000000
+}
+
+TEST(SurfaceClassify, FlatFacesGetAPlaneCurvedOnesDoNot) {
+    PlaneSet planes;
+    DrawSurface flat = faceFrom({{0, 0, 8}, {0, 64, 8}, {64, 64, 8}});
+    flat.kind = SurfaceKind::Triangles;
+    ClassifyOptions options;
+    classifySurface(flat, planes, options);
+    EXPECT_TRUE(flat.planar);
+    ASSERT_GE(flat.planeNum, 0);
+    EXPECT_DOUBLE_EQ(planes[flat.planeNum].dist(), 8.0);
+    EXPECT_EQ(flat.sampleSize, 0);  // triangle models are vertex lit
+
+    DrawSurface bent = faceFrom({{0, 0, 0}, {0, 64, 4}, {64, 64, 0}});
+    bent.kind = SurfaceKind::Face;
+    bent.sampleSize = 0;
+    bent.lightmapScale = 2;
+    classifySurface(bent, planes, options);
+    EXPECT_FALSE(bent.planar);
+    EXPECT_EQ(bent.planeNum, -1);
+    EXPECT_EQ(bent.lightmapAxis, (Vec3{0, 0, 1}));  // every normal faces +Z
+    EXPECT_EQ(bent.sampleSize, 32);
+}
+
+TEST(SurfaceClassify, TextureBiasMovesCoordinatesNearZero) {
+    DrawSurface ds = faceFrom({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    ds.verts[0].st[0] = 10.25f;
+    ds.verts[1].st[0] = 11.75f;
+    ds.verts[2].st[0] = 10.5f;
+    ds.verts[2].st[1] = -3.5f;
+    biasSurfaceTextures(ds);
+    EXPECT_FLOAT_EQ(ds.verts[0].st[0], -0.75f);  // floor(11.0) taken off
+    EXPECT_FLOAT_EQ(ds.verts[1].st[0], 0.75f);
+    EXPECT_FLOAT_EQ(ds.verts[2].st[1], -1.5f);  // floor(-1.75) = -2
+}
+
+TEST(PatchSurfaces, GridNormalsOfAFlatPatchPointOneWay) {
+    std::vector<bsp::DrawVert> verts(9);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) {
+            verts[size_t(y * 3 + x)].xyz[0] = float(x * 32);
+            verts[size_t(y * 3 + x)].xyz[1] = float(y * 32);
+        }
+    makeGridNormals(verts, 3, 3);
+    for (const bsp::DrawVert& v : verts) {
+        EXPECT_FLOAT_EQ(std::fabs(v.normal[2]), 1.0f);
+        EXPECT_FLOAT_EQ(v.normal[2], verts[0].normal[2]);
+    }
+}
+
+TEST(PatchSurfaces, CollinearControlPointsAreDegenerate) {
+    map::MapPatch p;
+    p.width = p.height = 3;
+    for (int i = 0; i < 9; ++i) p.control.push_back({Vec3{float(i), float(2 * i), 0}, {0, 0}});
+    EXPECT_TRUE(isDegeneratePatch(p));
+    p.control[4].xyz.z = 5;
+    EXPECT_FALSE(isDegeneratePatch(p));
+}
+
+TEST(SurfaceFilter, FacesReferenceOnlyOpenLeaves) {
+    // A tree split at x = 0: the front leaf is open, the back one opaque.
+    PlaneSet planes;
+    const int split = planes.find({{1, 0, 0}, 0});
+    Tree tree;
+    tree.nodes.resize(3);
+    tree.head = 0;
+    tree.nodes[0].planeNum = split & ~1;
+    tree.nodes[0].children[0] = 1;
+    tree.nodes[0].children[1] = 2;
+    tree.nodes[2].opaque = true;
+    DrawSurface crossing = faceFrom({{-32, 0, 0}, {-32, 64, 0}, {32, 64, 0}, {32, 0, 0}});
+    EXPECT_EQ(filterSurfaceIntoTree(crossing, tree, planes, 7), 1);
+    EXPECT_EQ(tree.nodes[1].drawSurfaces, (std::vector<int>{7}));
+    EXPECT_TRUE(tree.nodes[2].drawSurfaces.empty());
+    DrawSurface behind = faceFrom({{-32, 0, 0}, {-32, 64, 0}, {-16, 64, 0}});
+    EXPECT_EQ(filterSurfaceIntoTree(behind, tree, planes, 8), 0);
+}
+
+TEST(SurfaceExtraFile, DefaultBlockThenOnlyWhatDiffers) {
+    Log log(false);
+    const ShaderTable shaders = test::commonShaders(log);
+    std::unique_ptr<test::CompiledMap> c = test::compileMapText(test::worldspawn(test::boxBrush({0, 0, 0}, {64, 64, 64})));
+    DrawSurface a = faceFrom({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    a.kind = SurfaceKind::Face;
+    a.shader = &shaders.find("textures/base/wall");
+    a.planar = true;
+    a.indexes = {0, 1, 2};
+    a.sampleSize = 16;
+    a.lightmapAxis = -Vec3{0, 0, 1};
+    DrawSurface b = a;
+    b.kind = SurfaceKind::Patch;
+    b.planar = false;
+    b.indexes.clear();
+    b.mapEntityNum = 3;
+    b.castShadows = 0;
+    b.sampleSize = 8;
+    b.longestCurve = 12.5f;
+    b.lightmapAxis = {0, 0, 0};
+    const std::string text = surfaceExtraText({&a, &b}, 16, c->map);
+    EXPECT_EQ(text,
+              "default\n{\n\tcastShadows 1\n\treceiveShadows 1\n\tsampleSize 16\n"
+              "\tambientColor ( 0.000000 0.000000 0.000000 )\n\tlongestCurve 0.000000\n}\n\n"
+              "0 // ESurfaceType::Face V: 3 I: 3 planar\n{\n\tshader textures/base/wall\n"
+              "\tlightmapAxis ( -0.000000 -0.000000 -1.000000 )\n}\n\n"
+              "1 // ESurfaceType::Patch V: 3 I: 0 \n{\n\tshader textures/base/wall\n\tentity 3\n"
+              "\tcastShadows 0\n\tsampleSize 8\n\tlongestCurve 12.500000\n}\n\n");
+}
+
+// A whole compile of a map text with the test shaders (default 64x64 texture sizes).
+CompiledBsp compileText(const std::string& text, BspCompileOptions options = {}) {
+    static Log log(false);
+    static const ShaderTable shaders = test::commonShaders(log);
+    static std::vector<std::unique_ptr<test::CompiledMap>> keep;  // the loaded map outlives the result
+    auto c = std::make_unique<test::CompiledMap>();
+    c->file = map::parseMap(text, "test.map");
+    c->map = loadMapForBsp(c->file, shaders, {}, log);
+    const TextureSizes textures;
+    CompiledBsp out = compileBsp({c->map, c->file, shaders, textures}, options, log);
+    keep.push_back(std::move(c));
+    return out;
+}
+
+const std::string kBoxRoom = test::worldspawn(test::hollowRoom({64, 64, 64}, {448, 448, 320})) +
+                             test::pointEntity("info_player_deathmatch", {256, 256, 128});
+
+TEST(BspCompile, SealedRoomHasSixInwardFacesInItsOneLeaf) {
+    const CompiledBsp out = compileText(kBoxRoom);
+    EXPECT_NO_THROW(bsp::validateBsp(out.bsp, "room"));
+    ASSERT_EQ(out.bsp.surfaces.size(), 6u);
+    for (const bsp::Surface& s : out.bsp.surfaces) {
+        EXPECT_EQ(s.surfaceType, bsp::MST_PLANAR);
+        EXPECT_EQ(s.numVerts, 4);
+        EXPECT_EQ(s.numIndexes, 6);
+        EXPECT_EQ(s.lightmapNum, bsp::kLightmapByVertex);
+        EXPECT_EQ(s.fogNum, -1);
+        // Inward faces: the normal points to the room's centre.
+        const bsp::DrawVert& v = out.bsp.drawVerts[size_t(s.firstVert)];
+        const Vec3 toCentre = Vec3{256, 256, 192} - Vec3::fromArray(v.xyz);
+        EXPECT_GT(dot(toCentre, Vec3::fromArray(v.normal)), 0);
+    }
+    int open = 0;
+    for (size_t i = 1; i < out.bsp.leafs.size(); ++i)  // leaf 0 is the dummy
+        if (out.bsp.leafs[i].cluster >= 0) {
+            ++open;
+            EXPECT_EQ(out.bsp.leafs[i].numLeafSurfaces, 6);
+        }
+    EXPECT_EQ(open, 1);
+    EXPECT_EQ((std::vector<int32_t>(out.bsp.drawIndexes.begin(), out.bsp.drawIndexes.begin() + 6)),
+              (std::vector<int32_t>{0, 1, 2, 0, 2, 3}));  // the seeded quad
+    EXPECT_LT(out.bsp.drawIndexes.size(), 6u + 6u * 6);   // equal strips share their run
+    EXPECT_NE(out.surfaceExtra.find("5 // ESurfaceType::Face V: 4 I: 6 planar"), std::string::npos);
+    EXPECT_FALSE(out.world.leaked);
+}
+
+TEST(BspCompile, NodrawFacesAreNotDrawnAndBrushModelsGetTheirOwnSurfaces) {
+    const std::string map =
+        test::worldspawn(test::hollowRoom({64, 64, 64}, {448, 448, 320}, 16, "common/caulk") +
+                         test::boxBrush({64, 64, 48}, {448, 448, 64})) +
+        "{\n\"classname\" \"func_door\"\n" + test::boxBrush({200, 200, 64}, {232, 232, 128}) + "}\n" +
+        test::pointEntity("info_player_deathmatch", {256, 256, 128});
+    const CompiledBsp out = compileText(map);
+    ASSERT_EQ(out.bsp.models.size(), 2u);
+    EXPECT_EQ(out.bsp.models[0].numSurfaces, 1);  // only the floor's top: the caulk room draws nothing
+    // Culling only compares brushes of one entity: the door's bottom on the floor stays.
+    EXPECT_EQ(out.bsp.models[1].numSurfaces, 6);
+    EXPECT_EQ(out.bsp.models[1].firstSurface, 1);
+    const bsp::Leaf& doorLeaf = out.bsp.leafs.back();
+    EXPECT_EQ(doorLeaf.numLeafSurfaces, 6);
+    EXPECT_EQ(out.bsp.leafSurfaces[size_t(doorLeaf.firstLeafSurface)], 1);
+}
+
+TEST(BspCompile, LeakingRoomWritesALineAndNoPortals) {
+    const std::string map = test::worldspawn(test::boxBrush({0, 0, 0}, {256, 256, 16})) +
+                            test::pointEntity("info_player_deathmatch", {128, 128, 64});
+    const CompiledBsp out = compileText(map);
+    EXPECT_TRUE(out.world.leaked);
+    EXPECT_FALSE(out.world.leakLine.empty());
+    EXPECT_TRUE(out.world.portalFile.empty());
+}
+
+}  // namespace
+}  // namespace q3::bspstage
