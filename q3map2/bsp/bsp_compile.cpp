@@ -15,6 +15,7 @@
 #include "structure_emit.h"
 #include "surface_filter.h"
 #include "surface_triangles.h"
+#include "tjunctions.h"
 #include "visible_hull.h"
 
 namespace q3::bspstage {
@@ -39,6 +40,19 @@ struct ModelContext {
 void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& surfaces, Tree& tree) {
     const BspEntity& entity = c.in.map.entities[entityIndex];
     if (c.options.subdivide) subdivideFaceSurfaces(surfaces, entity, c.faces, c.params);
+    if (c.options.tjunctions) {
+        c.log.debug("--- FixTJunctions ---");
+        const TJunctionCounts t = fixTJunctions(surfaces);
+        c.log.debug(countLine(t.axialLines, "axial edge lines"));
+        c.log.debug(countLine(t.nonAxialLines, "non-axial edge lines"));
+        c.log.debug(countLine(t.degenerateEdges, "degenerate edges"));
+        c.log.debug(countLine(t.addedVerts, "verts added for T-junctions"));
+        c.log.debug(countLine(t.totalVerts, "total verts"));
+        c.log.debug(countLine(t.natural, "naturally ordered"));
+        c.log.debug(countLine(t.rotated, "rotated orders"));
+        c.log.debug(countLine(t.cantOrder, "can't order"));
+        c.log.debug(countLine(t.broken, "broken (degenerate) surfaces removed"));
+    }
     c.log.debug("--- ClassifyEntitySurfaces ---");
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));

@@ -26,6 +26,7 @@ struct BspCompileOptions {
     bool brushSnap = true;      // off with -nobrushsnap
     bool fog = true;            // off with -nofog
     bool subdivide = true;      // off with -nosubdivide: tessSize ignored
+    bool tjunctions = true;     // off with -notjunc
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

@@ -53,6 +53,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.brushSnap = !o.noBrushSnap;
     c.fog = !o.noFog;
     c.subdivide = !o.noSubdivide;
+    c.tjunctions = !o.noTJunc;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;
@@ -71,7 +72,6 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     fs::path mapPath = bspPath;
     mapPath.replace_extension(".map");
     log.info("--- BSP ---");
-    if (options.noTJunc) log.info("T-junction fixing disabled");
 
     // q3map2 deletes the previous portal and leak files before anything else.
     std::error_code ignored;

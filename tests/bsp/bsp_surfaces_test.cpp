@@ -13,6 +13,7 @@
 #include "surface_classify.h"
 #include "surface_filter.h"
 #include "surface_triangles.h"
+#include "tjunctions.h"
 
 namespace q3::bspstage {
 namespace {
@@ -162,6 +163,41 @@ TEST(SurfaceFilter, FacesReferenceOnlyOpenLeaves) {
     EXPECT_TRUE(tree.nodes[2].drawSurfaces.empty());
     DrawSurface behind = faceFrom({{-32, 0, 0}, {-32, 64, 0}, {-16, 64, 0}});
     EXPECT_EQ(filterSurfaceIntoTree(behind, tree, planes, 8), 0);
+}
+
+TEST(TJunctions, AFaceTakesTheVertexItsNeighbourHasOnItsEdge) {
+    // A 128-wide floor face beside two 64-wide faces: the floor's shared edge gets their middle
+    // vertex, with the texture coordinate interpolated and the T-junction mark set.
+    std::vector<DrawSurface> surfaces;
+    surfaces.push_back(faceFrom({{0, 0, 0}, {0, 128, 0}, {128, 128, 0}, {128, 0, 0}}));
+    surfaces.push_back(faceFrom({{128, 0, 0}, {128, 64, 0}, {192, 64, 0}, {192, 0, 0}}));
+    surfaces.push_back(faceFrom({{128, 64, 0}, {128, 128, 0}, {192, 128, 0}, {192, 64, 0}}));
+    for (DrawSurface& ds : surfaces) ds.kind = SurfaceKind::Face;
+    surfaces[0].verts[2].st[1] = 1;  // t is 1 at (128 128) and 0 at (128 0)
+    const TJunctionCounts counts = fixTJunctions(surfaces);
+    EXPECT_EQ(counts.addedVerts, 1);
+    ASSERT_EQ(surfaces[0].verts.size(), 5u);
+    ASSERT_EQ(surfaces[0].tjunctionVerts.size(), 5u);
+    int added = -1;
+    for (size_t i = 0; i < 5; ++i)
+        if (surfaces[0].tjunctionVerts[i]) added = int(i);
+    ASSERT_GE(added, 0);
+    EXPECT_EQ(Vec3::fromArray(surfaces[0].verts[size_t(added)].xyz), (Vec3{128, 64, 0}));
+    EXPECT_FLOAT_EQ(surfaces[0].verts[size_t(added)].st[1], 0.5f);
+    EXPECT_EQ(surfaces[1].verts.size(), 4u);  // nothing lies inside their edges
+    EXPECT_EQ(surfaces[2].verts.size(), 4u);
+}
+
+TEST(TJunctions, NearlyCoincidentVerticesAreWelded) {
+    std::vector<DrawSurface> surfaces;
+    surfaces.push_back(faceFrom({{0, 0, 0}, {0, 64, 0}, {0.05f, 64, 0}, {64, 64, 0}, {64, 0, 0}}));
+    surfaces[0].kind = SurfaceKind::Face;
+    fixTJunctions(surfaces);
+    ASSERT_EQ(surfaces[0].verts.size(), 4u);
+    surfaces.push_back(faceFrom({{0, 0, 0}, {0.05f, 0, 0}, {0, 0.05f, 0}}));
+    surfaces[1].kind = SurfaceKind::Face;
+    EXPECT_EQ(fixTJunctions(surfaces).broken, 1);
+    EXPECT_EQ(surfaces[1].kind, SurfaceKind::Bad);
 }
 
 TEST(SurfaceExtraFile, DefaultBlockThenOnlyWhatDiffers) {
