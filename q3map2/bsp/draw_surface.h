@@ -17,6 +17,17 @@ struct ShaderInfo;
 
 namespace q3::bspstage {
 
+inline Vec3 xyzOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.xyz); }
+inline Vec3 normalOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.normal); }
+
+// Normalises in place and returns the length before; a zero vector is left alone (returns 0).
+inline float normalizeInPlace(Vec3& v) {
+    const float len = length(v);
+    if (len == 0) return 0;
+    v = v * (1.0f / len);
+    return len;
+}
+
 // q3map2's surface types, in its order (the .srf comment names them).
 enum class SurfaceKind { Bad, Face, Patch, Triangles, Flare, Foliage, ForcedMeta, Meta, Foghull, Decal, Shader };
 

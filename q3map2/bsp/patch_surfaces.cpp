@@ -11,17 +11,6 @@ namespace {
 
 constexpr float kEqualEpsilon = 0.001f;  // q3map2 EQUAL_EPSILON
 
-Vec3 xyzOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.xyz); }
-Vec3 normalOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.normal); }
-
-// Normalises in place; returns the length before (0 leaves the vector alone).
-float normalizeInPlace(Vec3& v) {
-    const float len = length(v);
-    if (len == 0) return 0;
-    v = v * (1.0f / len);
-    return len;
-}
-
 bool nearlyEqual(Vec3 a, Vec3 b) {
     return std::fabs(a.x - b.x) <= kEqualEpsilon && std::fabs(a.y - b.y) <= kEqualEpsilon &&
            std::fabs(a.z - b.z) <= kEqualEpsilon;

@@ -69,7 +69,7 @@ struct Filter {
     }
 };
 
-DVec3 xyzOf(const bsp::DrawVert& v) { return DVec3(Vec3::fromArray(v.xyz)); }
+DVec3 pointOf(const bsp::DrawVert& v) { return DVec3(xyzOf(v)); }
 Vec3 mid(Vec3 a, Vec3 b) { return (a + b) * 0.5f; }
 
 // Points whose convex hull holds every tessellation of one 3x3 sub-patch: its four corners and
@@ -101,7 +101,7 @@ int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& pla
         case SurfaceKind::Face:
         case SurfaceKind::Decal: {
             Winding w;
-            for (const bsp::DrawVert& v : ds.verts) w.push_back(xyzOf(v));
+            for (const bsp::DrawVert& v : ds.verts) w.push_back(pointOf(v));
             return f.winding(w, tree.head);
         }
         case SurfaceKind::Patch: {
@@ -115,11 +115,11 @@ int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& pla
         case SurfaceKind::Meta: {
             int refs = 0;
             for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) {
-                Winding w{xyzOf(ds.verts[size_t(ds.indexes[i])]), xyzOf(ds.verts[size_t(ds.indexes[i + 1])]),
-                          xyzOf(ds.verts[size_t(ds.indexes[i + 2])])};
+                Winding w{pointOf(ds.verts[size_t(ds.indexes[i])]), pointOf(ds.verts[size_t(ds.indexes[i + 1])]),
+                          pointOf(ds.verts[size_t(ds.indexes[i + 2])])};
                 refs += f.winding(w, tree.head);
             }
-            for (const bsp::DrawVert& v : ds.verts) refs += f.point(xyzOf(v), tree.head);
+            for (const bsp::DrawVert& v : ds.verts) refs += f.point(pointOf(v), tree.head);
             return refs;
         }
         default:

@@ -12,8 +12,6 @@ namespace {
 constexpr int kMaxStripIndexes = 1024;
 constexpr int kVertexCacheSize = 16;
 
-Vec3 xyzOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.xyz); }
-
 // The strip starting at vertex `first`, or nothing when one of its triangles is a sliver. The two
 // ends walk towards each other; each step moves the end whose next vertex is a T-junction vertex,
 // else they take turns.

@@ -36,15 +36,6 @@ struct PendingEdge {  // a non-axial edge, registered after all axial ones
     int vert;  // the face vertex starting the edge; -1 for a patch border
 };
 
-Vec3 xyzOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.xyz); }
-
-float normalizeInPlace(Vec3& v) {
-    const float len = length(v);
-    if (len == 0) return 0;
-    v = v * (1.0f / len);
-    return len;
-}
-
 // Two unit vectors perpendicular to `forward` and to each other (q3map2 MakeNormalVectors).
 void normalVectors(const Vec3& forward, Vec3& right, Vec3& up) {
     // This rotation and negation never gives a vector collinear with the original.
