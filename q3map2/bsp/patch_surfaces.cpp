@@ -1,5 +1,6 @@
 #include "patch_surfaces.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "log.h"
@@ -14,6 +15,35 @@ constexpr float kEqualEpsilon = 0.001f;  // q3map2 EQUAL_EPSILON
 bool nearlyEqual(Vec3 a, Vec3 b) {
     return std::fabs(a.x - b.x) <= kEqualEpsilon && std::fabs(a.y - b.y) <= kEqualEpsilon &&
            std::fabs(a.z - b.z) <= kEqualEpsilon;
+}
+
+// q3map2's length estimate of the quadratic span a-b-c, walked in eight float steps exactly as it
+// does (the .srf prints all digits); 0 for a straight span or one with a leg under 1/8 unit.
+float spanLength(Vec3 a, Vec3 b, Vec3 c) {
+    Vec3 ab = b - a, bc = c - b, ac = c - a;
+    if (normalizeInPlace(ab) < 0.125f || normalizeInPlace(bc) < 0.125f || normalizeInPlace(ac) < 0.125f) return 0;
+    if (dot(ab, bc) > 0.99f && dot(ab, ac) > 0.99f) return 0;
+    ab = b - a;
+    bc = c - b;
+    Vec3 last = a;
+    float len = 0, t = 0;
+    for (int i = 0; i < 8; ++i, t += 1.0f / 8) {
+        const Vec3 point = a + (ab * (1.0f - t) + bc * t);
+        len += length(point - last);
+        last = point;
+    }
+    return len;
+}
+
+// The longest span along the first row and first column of each 3x3 sub-patch.
+float longestCurveOf(const map::MapPatch& p) {
+    float longest = 0;
+    for (int x = 0; x + 2 < p.width; x += 2)
+        for (int y = 0; y + 2 < p.height; y += 2) {
+            longest = std::max(longest, spanLength(p.at(x, y).xyz, p.at(x + 1, y).xyz, p.at(x + 2, y).xyz));
+            longest = std::max(longest, spanLength(p.at(x, y).xyz, p.at(x, y + 1).xyz, p.at(x, y + 2).xyz));
+        }
+    return longest;
 }
 
 patch::ControlGrid gridOf(const map::MapPatch& p) {
@@ -118,12 +148,19 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
     }
     std::vector<patch::ControlGrid> grids;
     for (const PatchRef* ref : kept) grids.push_back(gridOf(*ref->patch));
+    // Patches sharing a control point pick their level of detail together: every member gets the
+    // group's control point bounds and longest curve.
     const std::vector<int> groups = patch::patchLodGroups(grids);
-    const std::vector<float> curves = patch::groupedLongestCurves(grids);
     std::vector<DBounds> groupBounds;
+    std::vector<float> groupCurve;
     for (size_t i = 0; i < kept.size(); ++i) {
-        if (size_t(groups[i]) >= groupBounds.size()) groupBounds.resize(size_t(groups[i]) + 1);
-        for (const map::PatchControl& c : kept[i]->patch->control) groupBounds[size_t(groups[i])].add(DVec3(c.xyz));
+        const size_t g = size_t(groups[i]);
+        if (g >= groupBounds.size()) {
+            groupBounds.resize(g + 1);
+            groupCurve.resize(g + 1, 0.0f);
+        }
+        for (const map::PatchControl& c : kept[i]->patch->control) groupBounds[g].add(DVec3(c.xyz));
+        groupCurve[g] = std::max(groupCurve[g], longestCurveOf(*kept[i]->patch));
     }
 
     std::vector<DrawSurface> out;
@@ -137,7 +174,7 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
         ds.patchWidth = p.width;
         ds.patchHeight = p.height;
         ds.lodBounds = groupBounds[size_t(groups[i])];
-        ds.longestCurve = curves[i];
+        ds.longestCurve = groupCurve[size_t(groups[i])];
         ds.castShadows = params.castShadows;
         ds.receiveShadows = params.receiveShadows;
         ds.sampleSize = params.sampleSize;

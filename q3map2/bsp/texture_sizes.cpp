@@ -11,6 +11,7 @@ namespace q3::bspstage {
 namespace {
 
 TextureSize sizeOf(const ShaderInfo& shader, const Vfs& vfs, Log& log) {
+    if (shader.textureWidth > 0 && shader.textureHeight > 0) return {shader.textureWidth, shader.textureHeight};
     TextureSize size = kDefaultTextureSize;
     bool found = shader.isNoDraw();  // nodraw faces are never drawn: q3map2 gives them the default
     if (!found) {
@@ -27,7 +28,6 @@ TextureSize sizeOf(const ShaderInfo& shader, const Vfs& vfs, Log& log) {
         }
         if (!found) log.warning("Couldn't find image for shader " + shader.name);
     }
-    if (shader.textureWidth > 0 && shader.textureHeight > 0) size = {shader.textureWidth, shader.textureHeight};
     return size;
 }
 

@@ -1,6 +1,7 @@
 // The image size that scales a shader's brush face texture coordinates (q3map2 LoadShaderImages):
-// q3map_textureSize if given, else the first of editor image, shader name, implicit image and light
-// image that loads; nodraw shaders and shaders without any image use q3map2's 64x64 default.
+// q3map_textureSize if given (then no image is looked for), else the first of editor image, shader
+// name, implicit image and light image that loads; nodraw shaders and shaders without any image
+// use q3map2's 64x64 default.
 #pragma once
 
 #include <map>
