@@ -138,7 +138,9 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
         weldShortEdges(w);
         side.winding.clear();
         if (w.size() >= 3)
-            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p));
+            // + 0.0 turns -0 into 0: q3map2 builds windings around the brush centre and moves
+            // them back, so an axial coordinate of 0 comes out positive.
+            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p + DVec3{0.0, 0.0, 0.0}));
     }
     brush.bounds = DBounds{};
     for (const BrushSide& side : brush.sides)

@@ -181,9 +181,11 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
 
 void BspBuilder::fixBrushSides(const std::vector<DrawSurface>& surfaces) {
     for (const DrawSurface& ds : surfaces) {
-        if (ds.outputNum < 0 || ds.brush < 0 || ds.fogBackFace) continue;
+        if (ds.outputNum < 0 || ds.brush < 0) continue;
         const bsp::Brush& brush = out_.brushes[size_t(firstBrush_ + ds.brush)];
-        bsp::BrushSide& side = out_.brushSides[size_t(brush.firstSide + ds.side)];
+        // q3map2's copy of a fog side for the back face was never written, and its output number
+        // is still 0: the file's first brush side takes that face's shader.
+        bsp::BrushSide& side = out_.brushSides[ds.fogBackFace ? 0 : size_t(brush.firstSide + ds.side)];
         const std::string& name = map_.shaderName(*ds.shader);
         if (std::strncmp(out_.shaders[size_t(side.shaderNum)].name, name.c_str(), sizeof(bsp::Shader::name)) != 0)
             side.shaderNum = shader(*ds.shader);

@@ -40,7 +40,7 @@ public:
     // the bounds of a brush model.
     int emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options);
     // Points the current model's brush sides at the shader of the face drawn from them when the
-    // names differ (q3map2 FixBrushSides).
+    // names differ (q3map2 FixBrushSides; the back face of a fog side re-points brush side 0).
     void fixBrushSides(const std::vector<DrawSurface>& surfaces);
     // Writes the tree (the world) or its single leaf (a brush model) and closes the model.
     void endModel(const Tree& tree);
