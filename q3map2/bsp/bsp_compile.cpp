@@ -8,6 +8,7 @@
 #include "face_subdivide.h"
 #include "fog_volumes.h"
 #include "log.h"
+#include "model_surfaces.h"
 #include "patch_surfaces.h"
 #include "script.h"
 #include "shader_info.h"
@@ -91,13 +92,6 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.builder.endModel(tree);
 }
 
-void warnUnsupportedModels(const CompileInputs& in, Log& log) {
-    for (const map::MapEntity& e : in.file.entities)
-        if (equalsNoCase(e.classname(), "misc_model"))
-            log.warning("Entity " + std::to_string(e.number) +
-                        " (misc_model): models are not baked into the BSP by this build yet; skipped");
-}
-
 }  // namespace
 
 CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options, Log& log) {
@@ -114,7 +108,6 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     std::vector<int> brushOutputs(map.entities.size(), -1);
     std::vector<std::unique_ptr<DrawSurface>> written;
     ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, log};
-    warnUnsupportedModels(in, log);
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];
@@ -138,6 +131,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 log.debug(countLine(culled.coincident, "coincident faces culled"));
                 addFaceSurfaces(e, faces, params, surfaces);
             }
+            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs}, surfaces, log);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
@@ -155,6 +149,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
             cullSides(e.brushes, map.planes);
             clipSidesIntoTree(e.brushes, tree, map.planes);
             addFaceSurfaces(e, faces, params, surfaces);
+            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs}, surfaces, log);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             finishModel(c, i, surfaces, tree);

@@ -14,6 +14,7 @@
 namespace q3 {
 class Log;
 class ShaderTable;
+class Vfs;
 }  // namespace q3
 
 namespace q3::bspstage {
@@ -43,6 +44,7 @@ struct CompileInputs {
     const map::MapFile& file;
     const ShaderTable& shaders;
     const TextureSizes& textures;
+    const Vfs* vfs = nullptr;  // misc_model files; nullptr: models are skipped with a warning
 };
 
 CompiledBsp compileBsp(const CompileInputs& inputs, const BspCompileOptions& options, Log& log);

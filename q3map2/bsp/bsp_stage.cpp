@@ -107,7 +107,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     log.info(std::to_string(map.counts.areaportals) + " areaportals");
 
     const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
-    CompiledBsp compiled = compileBsp({map, file, shaders, textures}, compileOptions(options, common), log);
+    CompiledBsp compiled = compileBsp({map, file, shaders, textures, &vfs}, compileOptions(options, common), log);
 
     writeWorldStructureFiles(compiled.world, bspPath);
     if (compiled.stoppedForLeakTest) return 0;

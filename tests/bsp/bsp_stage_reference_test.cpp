@@ -1,0 +1,115 @@
+// The -bsp stage against q3map2 2.5.17n (plain -bsp, no -meta) on the 13 oacmp maps, by what
+// players meet rather than by bytes: the contents at 20000 random points (at least 99.9 % equal),
+// the drawn area of every shader (within 1 %), and the reference's own -vis and -light -fast
+// accepting our BSP, .prt and .srf.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "bsp_compare.h"
+#include "bsp_reference.h"
+#include "bsp_stage.h"
+#include "file_io.h"
+#include "log.h"
+#include "reference_fixture.h"
+#include "test_data.h"
+
+namespace q3::bspstage {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace q3::bspstage::test;
+
+constexpr int kPoints = 20000;
+
+// Our compile of a map source in a scratch maps/ folder; returns the .bsp path.
+fs::path ourCompile(const fs::path& mapSource, const fs::path& work) {
+    fs::remove_all(work);
+    fs::create_directories(work / "maps");
+    const fs::path map = work / "maps" / mapSource.filename();
+    fs::copy_file(mapSource, map);
+    CommonOptions common;
+    common.basePaths.push_back(q3::test::openArenaBase().string());
+    common.baseGame = "baseoa";
+    common.mapPath = fs::path(map).replace_extension(".bsp");
+    common.commandLine = "-bsp";
+    Log log(false);
+    runBspStage(BspOptions{}, common, log);
+    return common.mapPath;
+}
+
+// Runs the reference q3map2 stage `stageArgs` (e.g. "-vis -fast") on `bspPath`; returns its exit status.
+int runReferenceStage(const fs::path& reference, const std::string& stageArgs, const fs::path& bspPath,
+                      std::string& output) {
+    return q3::test::runCommand(q3::test::shellQuote(reference) + " -threads 2 -game quake3 -fs_basepath " +
+                                    q3::test::shellQuote(q3::test::openArenaBase()) + " -fs_basegame baseoa " +
+                                    stageArgs + " " + q3::test::shellQuote(bspPath),
+                                &output);
+}
+
+class BspStageReference : public conformance::ReferenceTest<fs::path> {};
+
+TEST_P(BspStageReference, ContentsAndDrawnAreasMatchQ3map2) {
+    const fs::path mapSource = GetParam();
+    const std::string name = mapSource.stem().string();
+    const fs::path refDir = referenceCompile(reference(), mapSource, {}, false);
+    const fs::path work = fs::temp_directory_path() / ("bsp-stage-ref-" + name + "-" + std::to_string(::getpid()));
+    const bsp::Bsp ours = bsp::readBsp(ourCompile(mapSource, work));
+    const bsp::Bsp theirs = bsp::readBsp(refDir / (name + ".bsp"));
+
+    int same = 0;
+    for (const Vec3& p : randomPoints(theirs, kPoints, 1234)) same += pointContents(ours, p) == pointContents(theirs, p);
+    const double agreement = double(same) / kPoints;
+    const AreaComparison areas = compareAreas(drawnAreaByShader(ours), drawnAreaByShader(theirs), 0.01);
+    std::printf("%-10s contents %.3f %% of %d points  shaders within 1 %%: %d of %d  surfaces %zu / %zu\n", name.c_str(),
+                100.0 * agreement, kPoints, areas.within, areas.shaders, ours.surfaces.size(), theirs.surfaces.size());
+    for (const std::string& s : areas.outside) std::printf("    area differs: %s\n", s.c_str());
+    EXPECT_GE(agreement, 0.999);
+    EXPECT_EQ(areas.within, areas.shaders);
+    fs::remove_all(work);
+}
+
+TEST_P(BspStageReference, ReferenceVisReadsOurPortalFile) {
+    const fs::path mapSource = GetParam();
+    const std::string name = mapSource.stem().string();
+    const fs::path work = fs::temp_directory_path() / ("bsp-stage-vis-" + name + "-" + std::to_string(::getpid()));
+    const fs::path bspPath = ourCompile(mapSource, work);
+    std::string output;
+    const int status = runReferenceStage(reference(), "-vis -fast", bspPath, output);
+    EXPECT_EQ(status, 0) << output.substr(0, 2000);
+    const bsp::Bsp visible = bsp::readBsp(bspPath);
+    EXPECT_FALSE(visible.visibility.empty()) << name << ": the reference wrote no visibility";
+    fs::remove_all(work);
+}
+
+std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return info.param.stem().string(); }
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, BspStageReference, ::testing::ValuesIn(q3::test::oacmpMapSourcesForRegistration()),
+                         mapName);
+
+// The reference -light -fast lights our BSP with our .srf (one map: other runs take a minute).
+class BspStageLight : public conformance::ReferenceTest<std::string> {};
+
+TEST_P(BspStageLight, ReferenceLightAcceptsOurBspAndSrf) {
+    fs::path mapSource;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == GetParam()) mapSource = p;
+    ASSERT_FALSE(mapSource.empty()) << GetParam();
+    const fs::path work = fs::temp_directory_path() / ("bsp-stage-light-" + GetParam() + "-" + std::to_string(::getpid()));
+    const fs::path bspPath = ourCompile(mapSource, work);
+    std::string output;
+    const int status = runReferenceStage(reference(), "-light -fast", bspPath, output);
+    EXPECT_EQ(status, 0) << output.substr(0, 2000);
+    EXPECT_NE(output.find(".srf"), std::string::npos) << "the reference did not read our .srf";
+    const bsp::Bsp lit = bsp::readBsp(bspPath);
+    EXPECT_FALSE(lit.lightmaps.empty());
+    EXPECT_FALSE(lit.lightGrid.empty());
+    fs::remove_all(work);
+}
+
+INSTANTIATE_TEST_SUITE_P(Oacmp, BspStageLight, ::testing::Values("oacmpdm1"));
+
+}  // namespace
+}  // namespace q3::bspstage
