@@ -97,6 +97,9 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
 CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options, Log& log) {
     CompiledBsp out;
     LoadedMap& map = in.map;
+    // q3map2 would write a BSP without a world model, which no engine loads.
+    if (map.entities.front().brushes.empty() && map.entities.front().patches.empty())
+        throw CompileError(in.file.name + ": the world has no brushes or patches, nothing to compile");
     const std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
     const FaceContext faces{map.planes, in.textures, options.brushSnap};
     BspBuilder builder(map, in.shaders);

@@ -362,6 +362,11 @@ TEST(BspCompile, NodrawFacesAreNotDrawnAndBrushModelsGetTheirOwnSurfaces) {
     EXPECT_EQ(out.bsp.leafSurfaces[size_t(doorLeaf.firstLeafSurface)], 1);
 }
 
+TEST(BspCompile, AWorldWithoutBrushesIsAnError) {
+    EXPECT_THROW(compileText(test::worldspawn("") + test::pointEntity("info_player_deathmatch", {0, 0, 0})),
+                 CompileError);
+}
+
 TEST(BspCompile, LeakingRoomWritesALineAndNoPortals) {
     const std::string map = test::worldspawn(test::boxBrush({0, 0, 0}, {256, 256, 16})) +
                             test::pointEntity("info_player_deathmatch", {128, 128, 64});
