@@ -1,6 +1,10 @@
 #include "texture_sizes.h"
 
+#include <algorithm>
 #include <exception>
+#include <string>
+
+#include <tbb/parallel_for.h>
 
 #include "log.h"
 #include "shader_info.h"
@@ -10,33 +14,48 @@
 namespace q3::bspstage {
 namespace {
 
-TextureSize sizeOf(const ShaderInfo& shader, const Vfs& vfs, Log& log) {
-    if (shader.textureWidth > 0 && shader.textureHeight > 0) return {shader.textureWidth, shader.textureHeight};
-    TextureSize size = kDefaultTextureSize;
-    bool found = shader.isNoDraw();  // nodraw faces are never drawn: q3map2 gives them the default
-    if (!found) {
-        for (const std::string& name : shader.textureImageCandidates()) {
-            try {
-                if (std::optional<LoadedImage> image = loadImage(vfs, name)) {
-                    size = {image->image.width, image->image.height};
-                    found = true;
-                    break;
-                }
-            } catch (const std::exception& e) {
-                log.warning(e.what());
-            }
-        }
-        if (!found) log.warning("Couldn't find image for shader " + shader.name);
+// The size of one shader's image and the warning to give (empty when none); `log` is not touched,
+// so that shaders can be measured in parallel and their warnings printed in order afterwards.
+struct Measured {
+    TextureSize size;
+    std::vector<std::string> warnings;
+};
+
+Measured measure(const ShaderInfo& shader, const Vfs& vfs) {
+    Measured out;
+    if (shader.textureWidth > 0 && shader.textureHeight > 0) {
+        out.size = {shader.textureWidth, shader.textureHeight};
+        return out;
     }
-    return size;
+    if (shader.isNoDraw()) return out;  // nodraw faces are never drawn: q3map2 gives them the default
+    for (const std::string& name : shader.textureImageCandidates()) {
+        try {
+            if (std::optional<LoadedImage> image = loadImage(vfs, name)) {
+                out.size = {image->image.width, image->image.height};
+                return out;
+            }
+        } catch (const std::exception& e) {
+            out.warnings.push_back(e.what());
+        }
+    }
+    out.warnings.push_back("Couldn't find image for shader " + shader.name);
+    return out;
 }
 
 }  // namespace
 
 TextureSizes TextureSizes::load(const std::vector<const ShaderInfo*>& shaders, const Vfs& vfs, Log& log) {
-    TextureSizes out;
+    std::vector<const ShaderInfo*> unique;
     for (const ShaderInfo* shader : shaders)
-        if (shader && !out.sizes_.count(shader)) out.sizes_[shader] = sizeOf(*shader, vfs, log);
+        if (shader && std::find(unique.begin(), unique.end(), shader) == unique.end()) unique.push_back(shader);
+    // Images are decoded in parallel into one slot per shader; warnings follow the shader order.
+    std::vector<Measured> measured(unique.size());
+    tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) { measured[i] = measure(*unique[i], vfs); });
+    TextureSizes out;
+    for (size_t i = 0; i < unique.size(); ++i) {
+        for (const std::string& w : measured[i].warnings) log.warning(w);
+        out.sizes_[unique[i]] = measured[i].size;
+    }
     return out;
 }
 

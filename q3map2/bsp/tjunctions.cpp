@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <list>
+#include <unordered_map>
 #include <string>
 
 #include "log.h"
@@ -47,6 +49,10 @@ void normalVectors(const Vec3& forward, Vec3& right, Vec3& up) {
 
 bool nearlyEqual(float a, float b, float epsilon) { return std::fabs(a - b) <= epsilon; }
 
+// The edge lines, with an index that finds the first line (in creation order) holding both ends of
+// an edge without testing every line: lines along a world axis are filed under the unit cell of
+// their other two coordinates (an edge's end within 0.25 of such a line lies in one of at most four
+// cells around it); the few other lines are tested one by one.
 class EdgeLines {
 public:
     std::vector<EdgeLine> lines;
@@ -58,16 +64,11 @@ public:
             ++counts.degenerateEdges;
             return -1;
         }
-        for (size_t i = 0; i < lines.size(); ++i) {
-            EdgeLine& e = lines[i];
-            if (!nearlyEqual(dot(v1, e.normal1), e.dist1, kPointOnLineEpsilon) ||
-                !nearlyEqual(dot(v1, e.normal2), e.dist2, kPointOnLineEpsilon) ||
-                !nearlyEqual(dot(v2, e.normal1), e.dist1, kPointOnLineEpsilon) ||
-                !nearlyEqual(dot(v2, e.normal2), e.dist2, kPointOnLineEpsilon))
-                continue;
-            insert(v1, e);
-            insert(v2, e);
-            return int(i);
+        const int found = firstHolding(v1, v2);
+        if (found >= 0) {
+            insert(v1, lines[size_t(found)]);
+            insert(v2, lines[size_t(found)]);
+            return found;
         }
         EdgeLine& e = lines.emplace_back();
         e.origin = v1;
@@ -77,10 +78,60 @@ public:
         e.dist2 = dot(e.origin, e.normal2);
         insert(v1, e);
         insert(v2, e);
-        return int(lines.size()) - 1;
+        const int index = int(lines.size()) - 1;
+        const int axis = alongAxis(dir);
+        if (axis < 0) {
+            general_.push_back(index);
+        } else {
+            const auto [a, b] = otherAxes(axis);
+            cells_[cellKey(axis, cellOf(v1[a]), cellOf(v1[b]))].push_back(index);
+        }
+        return index;
     }
 
 private:
+    using CellKey = uint64_t;
+
+    static int alongAxis(const Vec3& dir) {
+        for (int k = 0; k < 3; ++k)
+            if (dir[(k + 1) % 3] == 0 && dir[(k + 2) % 3] == 0) return k;
+        return -1;
+    }
+    static std::pair<int, int> otherAxes(int axis) { return {(axis + 1) % 3, (axis + 2) % 3}; }
+    static int64_t cellOf(float v) { return int64_t(std::floor(v)); }
+    static CellKey cellKey(int axis, int64_t a, int64_t b) {
+        return (CellKey(axis) << 62) ^ (CellKey(uint32_t(int32_t(a))) << 31) ^ CellKey(uint32_t(int32_t(b)));
+    }
+
+    bool holds(const EdgeLine& e, const Vec3& v1, const Vec3& v2) const {
+        return nearlyEqual(dot(v1, e.normal1), e.dist1, kPointOnLineEpsilon) &&
+               nearlyEqual(dot(v1, e.normal2), e.dist2, kPointOnLineEpsilon) &&
+               nearlyEqual(dot(v2, e.normal1), e.dist1, kPointOnLineEpsilon) &&
+               nearlyEqual(dot(v2, e.normal2), e.dist2, kPointOnLineEpsilon);
+    }
+
+    // The smallest index of a line holding both ends, or -1.
+    int firstHolding(const Vec3& v1, const Vec3& v2) const {
+        int best = std::numeric_limits<int>::max();
+        for (int index : general_) {
+            if (index >= best) break;
+            if (holds(lines[size_t(index)], v1, v2)) best = index;
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            const auto [a, b] = otherAxes(axis);
+            for (int64_t ca = cellOf(v1[a] - 0.5f); ca <= cellOf(v1[a] + 0.5f); ++ca)
+                for (int64_t cb = cellOf(v1[b] - 0.5f); cb <= cellOf(v1[b] + 0.5f); ++cb) {
+                    auto it = cells_.find(cellKey(axis, ca, cb));
+                    if (it == cells_.end()) continue;
+                    for (int index : it->second) {
+                        if (index >= best) break;
+                        if (holds(lines[size_t(index)], v1, v2)) best = index;
+                    }
+                }
+        }
+        return best == std::numeric_limits<int>::max() ? -1 : best;
+    }
+
     static void insert(const Vec3& v, EdgeLine& e) {
         const EdgePoint p{dot(v - e.origin, e.dir), v};
         for (auto it = e.points.begin(); it != e.points.end(); ++it) {
@@ -92,6 +143,9 @@ private:
         }
         e.points.push_back(p);
     }
+
+    std::vector<int> general_;  // lines not along an axis, in creation order
+    std::unordered_map<CellKey, std::vector<int>> cells_;
 };
 
 bool isAxial(const Vec3& dir) { return std::fabs(dir.x + dir.y + dir.z) == 1.0f; }
