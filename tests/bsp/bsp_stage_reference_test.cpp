@@ -1,12 +1,14 @@
 // The -bsp stage against q3map2 2.5.17n (plain -bsp, no -meta) on the 13 oacmp maps, by what
 // players meet rather than by bytes: the contents at 20000 random points (at least 99.9 % equal),
 // the drawn area of every shader (within 1 %), and the reference's own -vis and -light -fast
-// accepting our BSP, .prt and .srf.
+// accepting our BSP, .prt and .srf. Also: the same bytes with one and two threads.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <cstdio>
+
+#include <tbb/global_control.h>
 
 #include "bsp_compare.h"
 #include "bsp_reference.h"
@@ -88,6 +90,26 @@ std::string mapName(const ::testing::TestParamInfo<fs::path>& info) { return inf
 
 INSTANTIATE_TEST_SUITE_P(Oacmp, BspStageReference, ::testing::ValuesIn(q3::test::oacmpMapSourcesForRegistration()),
                          mapName);
+
+// The same bytes whatever the thread count (oacmpdm1, the oacmp map with models and fog).
+TEST(BspStageDeterminism, SameOutputWithOneAndTwoThreads) {
+    fs::path mapSource;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == "oacmpdm1") mapSource = p;
+    ASSERT_FALSE(mapSource.empty());
+    std::string bsp[2], srf[2];
+    for (int threads = 1; threads <= 2; ++threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        const fs::path work = fs::temp_directory_path() / ("bsp-stage-threads-" + std::to_string(threads) + "-" +
+                                                           std::to_string(::getpid()));
+        const fs::path bspPath = ourCompile(mapSource, work);
+        bsp[threads - 1] = readFileText(bspPath);
+        srf[threads - 1] = readFileText(fs::path(bspPath).replace_extension(".srf"));
+        fs::remove_all(work);
+    }
+    EXPECT_TRUE(bsp[0] == bsp[1]);
+    EXPECT_TRUE(srf[0] == srf[1]);
+}
 
 // The reference -light -fast lights our BSP with our .srf (one map: other runs take a minute).
 class BspStageLight : public conformance::ReferenceTest<std::string> {};
