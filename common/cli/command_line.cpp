@@ -57,9 +57,10 @@ std::filesystem::path bspPathFor(const std::string& mapArg) {
     std::filesystem::path path(mapArg);
     std::string extension = lowered(path.extension().string());
     if (extension == ".bsp") return path;
-    if (extension == ".map") return std::filesystem::path(path).replace_extension(".bsp");
+    if (extension == ".map" || extension == ".reg" || extension == ".ent")
+        return std::filesystem::path(path).replace_extension(".bsp");
     if (extension.empty()) return std::filesystem::path(mapArg + ".bsp");
-    throw UsageError("map file '" + mapArg + "' must end in .bsp or .map (or have no extension)");
+    throw UsageError("map file '" + mapArg + "' must end in .bsp, .map, .reg or .ent (or have no extension)");
 }
 
 CommandLine splitCommandLine(std::span<const std::string> args, const OptionTable<CommonOptions>& commonTable,
@@ -110,6 +111,7 @@ CommandLine splitCommandLine(std::span<const std::string> args, const OptionTabl
     if (!moved.empty()) parseOptions(commonTable, moved, before, common);
 
     common.mapPath = bspPathFor(line.mapArg);
+    common.mapArgument = line.mapArg;
     common.commandLine = stage.name;
     for (const std::string& a : line.stageArgs) common.commandLine += " " + a;
     return line;

@@ -21,6 +21,7 @@ struct CommonOptions {
     bool warningsAsErrors = false;         // -werror: a run with warnings fails (exit 1)
     std::filesystem::path statsPath;       // -stats FILE.json: machine-readable summary
     std::filesystem::path mapPath;         // the .bsp the map argument names (x.map and x give x.bsp)
+    std::filesystem::path mapArgument;     // the map argument as given (-bsp reads .reg and .ent files as named)
     std::string commandLine;               // the stage switch and its options, for _q3map2_cmdline
 };
 

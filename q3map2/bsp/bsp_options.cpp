@@ -33,7 +33,9 @@ cli::ArgSpec textArg(const char* name) { return {ArgKind::Text, name, Range::any
 cli::OptionTable<O> buildTable() {
     using cli::flag;
     cli::OptionTable<O> t;
-    t.push_back(refused({"-onlyents"}, {}, "Only update entities in the BSP"));
+    t.push_back(flag<O>({"-onlyents"}, &O::onlyEnts,
+                        "Only update entities in the BSP (from the .map, or from a .ent file given instead)",
+                        kImplemented));
     t.push_back(cli::textValue<O>({"-tempname"}, &O::tempName,
                                   "Read the MAP file from the given file name (deleted after the compile)", kImplemented,
                                   "filename.map", "none"));

@@ -9,6 +9,7 @@
 namespace q3::bspstage {
 
 struct BspOptions {
+    bool onlyEnts = false;       // -onlyents: replace only the entity lump of the existing BSP
     std::string tempName;        // -tempname: read the map from this file, deleted afterwards
     bool noWater = false;        // -nowater
     bool keepLights = false;     // -keeplights

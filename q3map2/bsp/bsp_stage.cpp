@@ -9,6 +9,7 @@
 #include "file_io.h"
 #include "log.h"
 #include "map_file.h"
+#include "script.h"
 #include "shader_info.h"
 #include "shader_loader.h"
 #include "vfs.h"
@@ -63,6 +64,29 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     return c;
 }
 
+// -onlyents (q3map2 OnlyEnts): the existing BSP keeps every lump but its entities, which are read
+// again from the map; worldspawn keeps the BSP's recorded command line, version and gridsize.
+void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const ShaderTable& shaders,
+                     const BspOptions& options, const CommonOptions& common, Log& log) {
+    log.info("--- OnlyEnts ---");
+    bsp::Bsp bsp = bsp::readBsp(bspPath, bsp::ReadOptions{common.force, true});
+    const std::vector<bsp::Entity> old = bsp::parseEntities(bsp.entities, bspPath.string());
+    MapLoadOptions load;
+    load.epsilons = {options.normalEpsilon, options.distanceEpsilon};
+    const LoadedMap map = loadMapForBsp(file, shaders, load, log);
+    EntityLumpOptions entityOptions;
+    entityOptions.keepLights = options.keepLights;
+    entityOptions.keepModels = options.keepModels;
+    entityOptions.recordCommandLine = false;
+    std::vector<bsp::Entity> entities = bspEntities(map, entityOptions);
+    if (!old.empty() && !entities.empty())
+        for (const char* key : {"_q3map2_cmdline", "_q3map2_version", "gridsize"})
+            if (const std::string* value = old.front().find(key); value && !value->empty()) entities.front().set(key, *value);
+    bsp.entities = bsp::unparseEntities(entities);
+    bsp::writeBsp(bspPath, bsp);
+    log.info("Writing " + bspPath.string());
+}
+
 }  // namespace
 
 int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log) {
@@ -90,9 +114,18 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     log.info(std::to_string(shaders.size()) + " shaderInfo");
 
     log.debug("--- LoadMapFile ---");
-    const fs::path source = options.tempName.empty() ? mapPath : fs::path(options.tempName);
+    fs::path source = options.tempName.empty() ? mapPath : fs::path(options.tempName);
+    // A region (.reg) is compiled as named; -onlyents may take its entities from a .ent file.
+    const std::string givenExtension = common.mapArgument.extension().string();
+    if (options.tempName.empty() &&
+        (equalsNoCase(givenExtension, ".reg") || (options.onlyEnts && equalsNoCase(givenExtension, ".ent"))))
+        source = common.mapArgument;
     log.info("entering " + source.string());
     const map::MapFile file = map::loadMap(source);
+    if (options.onlyEnts) {
+        replaceEntities(bspPath, file, shaders, options, common, log);
+        return 0;
+    }
     MapLoadOptions load;
     load.epsilons = {options.normalEpsilon, options.distanceEpsilon};
     load.noDetail = options.noDetail;

@@ -45,8 +45,10 @@ std::vector<bsp::Entity> bspEntities(const LoadedMap& map, const EntityLumpOptio
         for (const auto& [key, value] : e.source->pairs)
             if (!key.empty() && !value.empty()) entity.pairs.emplace_back(key, value);
         if (i == 0) {
-            entity.set("_q3map2_cmdline", commandLineValue(entity.value("_q3map2_cmdline"), options.stageArgs));
-            entity.set("_q3map2_version", options.version);
+            if (options.recordCommandLine) {
+                entity.set("_q3map2_cmdline", commandLineValue(entity.value("_q3map2_cmdline"), options.stageArgs));
+                entity.set("_q3map2_version", options.version);
+            }
             if (options.keepLights) entity.set("_keepLights", "1");
             if (options.keepModels) entity.set("_keepModels", "1");
             keepLights = isTrue(entity, "_keepLights");

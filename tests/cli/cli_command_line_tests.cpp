@@ -104,8 +104,8 @@ TEST(CliCommandLine, MapPathExtensions) {
     EXPECT_EQ(cli::bspPathFor("maps/a"), std::filesystem::path("maps/a.bsp"));
     EXPECT_EQ(cli::bspPathFor("maps/A.BSP"), std::filesystem::path("maps/A.BSP"));
     EXPECT_EQ(usageErrorOf([] { cli::bspPathFor("maps/a.txt"); }),
-              "map file 'maps/a.txt' must end in .bsp or .map (or have no extension)");
-    EXPECT_EQ(splitError({"-info", "x.pk3"}), "map file 'x.pk3' must end in .bsp or .map (or have no extension)");
+              "map file 'maps/a.txt' must end in .bsp, .map, .reg or .ent (or have no extension)");
+    EXPECT_EQ(splitError({"-info", "x.pk3"}), "map file 'x.pk3' must end in .bsp, .map, .reg or .ent (or have no extension)");
 }
 
 TEST(CliCommandLine, HelpRequests) {

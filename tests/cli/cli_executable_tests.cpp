@@ -85,7 +85,7 @@ TEST_F(CliExecutable, UsageErrorsExitWithTwoAndOneLine) {
     expectUsageError("-light -samplesize", "-light needs a map file as its last argument (-light [options] "
                                            "<filename.map>)");
     expectUsageError("-light -v m.bsp", "common option -v must come before the stage switch -light");
-    expectUsageError("-info m.txt", "map file 'm.txt' must end in .bsp or .map (or have no extension)");
+    expectUsageError("-info m.txt", "map file 'm.txt' must end in .bsp, .map, .reg or .ent (or have no extension)");
     expectUsageError("-help ligth", "no help for unknown stage 'ligth'; did you mean 'light'?");
 }
 
