@@ -216,6 +216,7 @@ struct ShaderInfo {
     std::string implicitImage;          // implicitMap / implicitMask / implicitBlend image
     bool tcGen = false;                 // q3map_tcGen vector / ivector: st = (dot(s, p), dot(t, p))
     Vec3 tcGenVectors[2];
+    std::string flareShader;            // q3map_flare / q3map_flareShader: flares of this surface (-flares)
     std::string backShader;             // q3map_backShader: a flipped copy with this shader
     std::string cloneShader;            // q3map_cloneShader: a copy with this shader
 

@@ -15,8 +15,8 @@ namespace {
 // q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 19> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel", "q3map_foliage",     "q3map_flare",        "q3map_flareShader",   "q3map_remapShader",
+constexpr std::array<std::string_view, 17> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel", "q3map_foliage",     "q3map_remapShader",
     "q3map_fur",          "q3map_colorGen",    "q3map_colorMod",     "q3map_rgbGen",        "q3map_rgbMod",
     "q3map_alphaGen",     "q3map_alphaMod",    "q3map_tcMod",        "q3map_indexed",       "q3map_patchShadows",
     "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
@@ -353,6 +353,8 @@ private:
         } else if (is("q3map_textureSize")) {
             shader.textureWidth = argInt(shader, token);
             shader.textureHeight = argInt(shader, token);
+        } else if (is("q3map_flare") || is("q3map_flareShader")) {
+            shader.flareShader = argToken(shader, token);
         } else if (is("q3map_backShader")) {
             shader.backShader = argToken(shader, token);
         } else if (is("q3map_cloneShader")) {

@@ -122,6 +122,16 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
     s.shaderNum = shader(si);
     s.fogNum = ds.fogNum;
     s.lightmapNum = bsp::kLightmapByVertex;
+    if (ds.kind == SurfaceKind::Flare) {
+        // A flare has no vertices: its origin, colour and normal travel in the lightmap fields.
+        s.surfaceType = bsp::MST_FLARE;
+        ds.flareOrigin.toArray(s.lightmapOrigin);
+        ds.flareColor.toArray(s.lightmapVecs[0]);
+        ds.planeNormal.toArray(s.lightmapVecs[2]);
+        out_.surfaces.push_back(s);
+        ds.outputNum = number;
+        return number;
+    }
     if (ds.kind == SurfaceKind::Patch) {
         if (si.invert) {
             for (bsp::DrawVert& v : ds.verts)

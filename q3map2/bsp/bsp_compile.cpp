@@ -57,6 +57,8 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.log.debug("--- ClassifyEntitySurfaces ---");
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (c.options.flares && entityIndex == 0)
+        for (DrawSurface& f : lightFlares(c.in.file, c.in.shaders)) surfaces.push_back(std::move(f));
     if (int(c.written.size() + surfaces.size()) > c.options.maxDrawSurfaces)
         throw CompileError("max_map_draw_surfs (" + std::to_string(c.options.maxDrawSurfaces) +
                            ") exceeded, consider -maxmapdrawsurfs to increase");
@@ -64,11 +66,18 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.log.debug("--- FilterDrawsurfsIntoTree ---");
     TriangulationCounts triangles;
     int references = 0, emitted = 0;
-    for (DrawSurface& ds : surfaces) {
-        if (ds.verts.empty()) continue;
+    const FlareColors noColors;
+    // Surface flares are appended while the list is walked, and filtered after the others.
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare) continue;
+        if (c.options.flares)
+            if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
+                                                            c.in.flareColors ? *c.in.flareColors : noColors))
+                surfaces.push_back(std::move(*f));
+        DrawSurface& ds = surfaces[i];
         if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
         biasSurfaceTextures(ds);
-        if (entityIndex != 0 && !ds.shader->noFog) {
+        if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare) {
             DBounds bounds;
             for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
             ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);

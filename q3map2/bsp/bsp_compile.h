@@ -8,6 +8,7 @@
 #include "bsp_builder.h"
 #include "entity_lump.h"
 #include "face_surfaces.h"
+#include "flares.h"
 #include "surface_classify.h"
 #include "world_structure.h"
 
@@ -28,6 +29,7 @@ struct BspCompileOptions {
     bool fog = true;            // off with -nofog
     bool subdivide = true;      // off with -nosubdivide: tessSize ignored
     bool tjunctions = true;     // off with -notjunc
+    bool flares = false;        // -flares
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };
@@ -45,6 +47,7 @@ struct CompileInputs {
     const ShaderTable& shaders;
     const TextureSizes& textures;
     const Vfs* vfs = nullptr;  // misc_model files; nullptr: models are skipped with a warning
+    const FlareColors* flareColors = nullptr;  // with -flares: the colour of surface flares (white without)
 };
 
 CompiledBsp compileBsp(const CompileInputs& inputs, const BspCompileOptions& options, Log& log);

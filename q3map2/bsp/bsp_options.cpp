@@ -80,8 +80,11 @@ cli::OptionTable<O> buildTable() {
     t.push_back(refused({"-metagoodscore"}, {intArg()}, "Good score for adding triangles to meta surfaces"));
     t.push_back(refused({"-metamaxbboxdistance"}, {floatArg()}, "Largest bounds growth of a meta surface"));
     t.push_back(refused({"-patchmeta"}, {}, "Turn patches into triangle meta surfaces"));
-    t.push_back(refused({"-flares"}, {}, "Emit flare surfaces"));
-    t.push_back(flag<O>({"-noflares"}, &O::noFlares, "Do not emit flare surfaces (the quake3 default)", kImplemented));
+    t.push_back(flag<O>({"-flares"}, &O::flares,
+                        "Emit flare surfaces (q3map_flare shaders, light entities with _flare or _flareshader)",
+                        kImplemented));
+    t.push_back(flag<O>({"-noflares"}, &O::flares, "Do not emit flare surfaces (the quake3 default)", kImplemented,
+                        false));
     t.push_back(refused({"-skyfix"}, {}, "Add shader-only surfaces for the sky box images"));
     t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
     t.push_back(refused({"-debuginset"}, {}, "Push triangle vertices one unit to the triangle centre"));

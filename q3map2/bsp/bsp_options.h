@@ -29,7 +29,7 @@ struct BspOptions {
     int maxLightmappedVerts = 64;    // -mv (at least 3)
     bool noBrushSnap = false;    // -nobrushsnap
     bool noHint = false;         // -nohint
-    bool noFlares = false;       // -noflares (flares are off for quake3 anyway)
+    bool flares = false;         // -flares / -noflares (quake3's default: off)
     bool alternateSplit = false;  // -altsplit
     bool deep = false;           // -deep
 };

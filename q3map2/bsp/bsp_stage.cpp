@@ -29,6 +29,21 @@ std::vector<const ShaderInfo*> brushSideShaders(const LoadedMap& map) {
     return out;
 }
 
+// Shaders of brush sides and patches whose surfaces have flares.
+std::vector<const ShaderInfo*> flareShaders(const LoadedMap& map, const ShaderTable& shaders) {
+    std::set<const ShaderInfo*> seen;
+    std::vector<const ShaderInfo*> out;
+    auto add = [&](const ShaderInfo* s) {
+        if (s && !s->flareShader.empty() && seen.insert(s).second) out.push_back(s);
+    };
+    for (const BspEntity& e : map.entities) {
+        for (const Brush& b : e.brushes)
+            for (const BrushSide& s : b.sides) add(s.shader);
+        for (const PatchRef& p : e.patches) add(&shaders.find(map::shaderNameForTexture(p.patch->texture)));
+    }
+    return out;
+}
+
 // The stage's own arguments (after the stage switch) from the recorded command line.
 std::vector<std::string> stageArguments(const std::string& commandLine) {
     std::vector<std::string> words;
@@ -55,6 +70,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.fog = !o.noFog;
     c.subdivide = !o.noSubdivide;
     c.tjunctions = !o.noTJunc;
+    c.flares = o.flares;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;
@@ -140,7 +156,10 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     log.info(std::to_string(map.counts.areaportals) + " areaportals");
 
     const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
-    CompiledBsp compiled = compileBsp({map, file, shaders, textures, &vfs}, compileOptions(options, common), log);
+    FlareColors flareColors;
+    if (options.flares) flareColors = FlareColors::load(flareShaders(map, shaders), &vfs, log);
+    CompiledBsp compiled =
+        compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
 
     writeWorldStructureFiles(compiled.world, bspPath);
     if (compiled.stoppedForLeakTest) return 0;

@@ -55,6 +55,11 @@ struct DrawSurface {
     DBounds lodBounds;         // control points of the patch's level-of-detail group
     float longestCurve = 0;
 
+    // Flares: where the corona is, its colour and light style.
+    Vec3 flareOrigin{0, 0, 0};
+    Vec3 flareColor{0, 0, 0};
+    int lightStyle = 0;
+
     // Lighting attributes (.srf and the surface record).
     Vec3 planeNormal{0, 0, 0};   // lightmapVecs[2]: the normal of a planar surface
     Vec3 lightmapAxis{0, 0, 0};

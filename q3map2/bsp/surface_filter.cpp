@@ -122,6 +122,8 @@ int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& pla
             for (const bsp::DrawVert& v : ds.verts) refs += f.point(pointOf(v), tree.head);
             return refs;
         }
+        case SurfaceKind::Flare:
+            return f.point(DVec3(ds.flareOrigin), tree.head);
         default:
             return 0;
     }

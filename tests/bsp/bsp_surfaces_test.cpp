@@ -362,6 +362,24 @@ TEST(BspCompile, NodrawFacesAreNotDrawnAndBrushModelsGetTheirOwnSurfaces) {
     EXPECT_EQ(out.bsp.leafSurfaces[size_t(doorLeaf.firstLeafSurface)], 1);
 }
 
+TEST(BspCompile, FlaresOnlyWithTheOption) {
+    const std::string map = kBoxRoom + "{\n\"classname\" \"light\"\n\"origin\" \"256 256 300\"\n\"_flare\" \"1\"\n"
+                                       "\"_color\" \"1 0.5 0\"\n}\n";
+    EXPECT_EQ(compileText(map).bsp.surfaces.size(), 6u);
+    BspCompileOptions options;
+    options.flares = true;
+    const CompiledBsp out = compileText(map, options);
+    ASSERT_EQ(out.bsp.surfaces.size(), 7u);
+    const bsp::Surface& flare = out.bsp.surfaces.back();
+    EXPECT_EQ(flare.surfaceType, bsp::MST_FLARE);
+    EXPECT_EQ(flare.numVerts, 0);
+    EXPECT_EQ(Vec3::fromArray(flare.lightmapOrigin), (Vec3{256, 256, 300}));
+    EXPECT_EQ(Vec3::fromArray(flare.lightmapVecs[0]), (Vec3{1, 0.5f, 0}));  // the light's colour
+    EXPECT_EQ(Vec3::fromArray(flare.lightmapVecs[2]), (Vec3{0, 0, -1}));    // no target: pointing down
+    EXPECT_STREQ(out.bsp.shaders[size_t(flare.shaderNum)].name, "flareshader");
+    EXPECT_NE(out.surfaceExtra.find("6 // ESurfaceType::Flare V: 0 I: 0 \n"), std::string::npos);
+}
+
 TEST(BspCompile, AWorldWithoutBrushesIsAnError) {
     EXPECT_THROW(compileText(test::worldspawn("") + test::pointEntity("info_player_deathmatch", {0, 0, 0})),
                  CompileError);
