@@ -99,7 +99,9 @@ void offsetBrushes(std::vector<Brush>& brushes, const DVec3& offset, PlaneSet& p
     for (Brush& b : brushes) {
         for (BrushSide& side : b.sides) {
             const MapPlane& p = planes[side.planeNum];
-            side.planeNum = planes.find({p.normal(), p.dist() - dot(p.normal(), offset)});
+            // In 32-bit floats, as q3map2's plane distance of the origin is.
+            const float moved = float(p.dist()) - dot(p.normal().toFloat(), offset.toFloat());
+            side.planeNum = planes.find({p.normal(), double(moved)});
             if (side.exactPlane.normal != DVec3{}) side.exactPlane.dist -= dot(side.exactPlane.normal, offset);
         }
         createBrushWindings(b, planes);
