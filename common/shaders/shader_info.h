@@ -65,6 +65,7 @@ inline constexpr uint32_t LightFilter = 0x8000;
 inline constexpr uint32_t AlphaShadow = 0x10000;
 inline constexpr uint32_t NoDLight = 0x20000;
 inline constexpr uint32_t Dust = 0x40000;
+inline constexpr uint32_t NoOb = 0x80000;  // quake3 game profile: bots' obstacle marker off
 inline constexpr uint32_t VertexLit = PointLight | NoLightmap;
 }  // namespace surfaceflags
 
@@ -87,6 +88,7 @@ inline constexpr uint32_t AreaPortal = 0x2000;
 inline constexpr uint32_t AntiPortal = 0x4000;
 inline constexpr uint32_t Skip = 0x8000;
 inline constexpr uint32_t NoMarks = 0x10000;
+inline constexpr uint32_t Ob = 0x20000;  // surfaceparm ob: exempt from -noob
 inline constexpr uint32_t Detail = 0x8000000;
 }  // namespace compileflags
 

@@ -11,7 +11,7 @@ namespace {
 // Surface flags a bevel inherits from the sides it touches (footstep and damage behaviour).
 constexpr uint32_t kBevelSurfaceFlagsMask = surfaceflags::NoDamage | surfaceflags::Slick | surfaceflags::Flesh |
                                             surfaceflags::MetalSteps | surfaceflags::NoSteps | surfaceflags::Dust |
-                                            0x80000;  // noob (quake3 game profile)
+                                            surfaceflags::NoOb;
 constexpr double kBevelEpsilon = 0.1;
 
 bool planesEqual(const MapPlane& p, const DPlane& plane, const PlaneEpsilons& eps) {

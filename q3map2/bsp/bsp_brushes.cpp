@@ -85,7 +85,7 @@ Brush brushFromMap(const map::MapBrush& source, int mapEntityNum, const ShaderTa
         side.shader = &shader;
         side.face = &face;
         side.contentFlags = shader.contentFlags;
-        side.surfaceFlags = shader.surfaceFlags;
+        side.surfaceFlags = out.flagRules.surfaceFlags(shader);
         side.compileFlags = shader.compileFlags;
         // Of the three legacy numbers only the detail bit of the first still means something.
         if (face.hasFlags && (uint32_t(face.contentFlags) & compileflags::Detail)) side.compileFlags |= compileflags::Detail;
@@ -187,7 +187,7 @@ void setBrushContents(Brush& b, bool fullDetail, Log& log) {
 }
 
 LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, const MapLoadOptions& options, Log& log) {
-    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}};
+    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}, {}, options.flagRules};
     for (const map::MapEntity& source : map.entities) {
         BspEntity ent;
         ent.source = &source;

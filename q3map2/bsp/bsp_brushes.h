@@ -11,6 +11,7 @@
 #include "dvec3.h"
 #include "map_file.h"
 #include "plane_set.h"
+#include "shader_flag_rules.h"
 #include "winding.h"
 
 namespace q3 {
@@ -77,6 +78,7 @@ struct MapLoadOptions {
     bool noWater = false;     // -nowater
     bool noHint = false;      // -nohint
     bool noCurves = false;    // -nocurves
+    ShaderFlagRules flagRules;  // -noob, -globalflag
 };
 
 struct MapLoadCounts {
@@ -96,6 +98,7 @@ struct LoadedMap {
     // Shaders without a script are named as the map first spelled them (q3map2 keeps that
     // spelling; the shader table keys them in lower case).
     std::map<const ShaderInfo*, std::string> implicitShaderNames;
+    ShaderFlagRules flagRules;
 
     // The name a shader is written under.
     const std::string& shaderName(const ShaderInfo& shader) const;

@@ -52,7 +52,7 @@ int BspBuilder::shader(const char* name, uint32_t contentFlags, uint32_t surface
 }
 
 int BspBuilder::shader(const ShaderInfo& si) {
-    return shader(map_.shaderName(si).c_str(), si.contentFlags, si.surfaceFlags);
+    return shader(map_.shaderName(si).c_str(), si.contentFlags, map_.flagRules.surfaceFlags(si));
 }
 
 void BspBuilder::beginModel(const BspEntity& e) {
@@ -88,7 +88,8 @@ void BspBuilder::emitBrushes(const std::vector<Brush>& brushes) {
             } else {
                 // Bevels carry no shader: "noshader" with the bevel's inherited surface flags.
                 const ShaderInfo& none = shaders_.find("noshader");
-                shaderNum = shader("noshader", none.contentFlags, side.bevel ? side.surfaceFlags : none.surfaceFlags);
+                shaderNum = shader("noshader", none.contentFlags,
+                                   side.bevel ? side.surfaceFlags : map_.flagRules.surfaceFlags(none));
             }
             out_.brushSides.push_back({side.planeNum, shaderNum});
         }

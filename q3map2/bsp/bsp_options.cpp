@@ -97,8 +97,14 @@ cli::OptionTable<O> buildTable() {
     t.push_back(flag<O>({"-deep"}, &O::deep, "Detail faces split the tree too (at the lowest priority)",
                         kImplemented));
     t.push_back(refused({"-maxarea"}, {}, "Triangulate faces by largest area instead of strips"));
-    t.push_back(refused({"-noob"}, {}, "Add the noob surface flag to every shader without surfaceparm ob"));
-    t.push_back(refused({"-globalflag"}, {textArg("surfaceparm")}, "Add a surfaceparm's flags to every shader"));
+    t.push_back(cli::custom<O>({"-noob"}, {}, 0, "off", "Add the noob surface flag to every shader without surfaceparm ob",
+                               kImplemented, [](O& o, std::span<const ArgValue>) { o.flagRules.noOb = true; }));
+    t.push_back(cli::custom<O>({"-globalflag"}, {textArg("surfaceparm")}, 1, "none",
+                               "Add a surfaceparm's surface flags to every shader (repeatable)", kImplemented,
+                               [](O& o, std::span<const ArgValue> v) {
+                                   if (!o.flagRules.addGlobalFlag(v[0].text))
+                                       throw cli::UsageError("-globalflag: '" + v[0].text + "' is not a surfaceparm");
+                               }));
     t.push_back(refused({"-autocaulk"}, {}, "Write <map>.caulk with the sides that could be caulk"));
     t.push_back(refused({"-texrange"}, {intArg()}, "Limit per-surface texture range"));
     return t;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "option_table.h"
+#include "shader_flag_rules.h"
 
 namespace q3::bspstage {
 
@@ -32,6 +33,7 @@ struct BspOptions {
     bool flares = false;         // -flares / -noflares (quake3's default: off)
     bool alternateSplit = false;  // -altsplit
     bool deep = false;           // -deep
+    ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 
 const cli::OptionTable<BspOptions>& bspOptionTable();

@@ -149,6 +149,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     load.noWater = options.noWater;
     load.noHint = options.noHint;
     load.noCurves = options.noCurves;
+    load.flagRules = options.flagRules;
     LoadedMap map = loadMapForBsp(file, shaders, load, log);
     log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");

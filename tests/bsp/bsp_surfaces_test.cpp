@@ -300,13 +300,13 @@ TEST(SurfaceExtraFile, DefaultBlockThenOnlyWhatDiffers) {
 }
 
 // A whole compile of a map text with the test shaders (default 64x64 texture sizes).
-CompiledBsp compileText(const std::string& text, BspCompileOptions options = {}) {
+CompiledBsp compileText(const std::string& text, BspCompileOptions options = {}, MapLoadOptions load = {}) {
     static Log log(false);
     static const ShaderTable shaders = test::commonShaders(log);
     static std::vector<std::unique_ptr<test::CompiledMap>> keep;  // the loaded map outlives the result
     auto c = std::make_unique<test::CompiledMap>();
     c->file = map::parseMap(text, "test.map");
-    c->map = loadMapForBsp(c->file, shaders, {}, log);
+    c->map = loadMapForBsp(c->file, shaders, load, log);
     const TextureSizes textures;
     CompiledBsp out = compileBsp({c->map, c->file, shaders, textures}, options, log);
     keep.push_back(std::move(c));
@@ -378,6 +378,36 @@ TEST(BspCompile, FlaresOnlyWithTheOption) {
     EXPECT_EQ(Vec3::fromArray(flare.lightmapVecs[2]), (Vec3{0, 0, -1}));    // no target: pointing down
     EXPECT_STREQ(out.bsp.shaders[size_t(flare.shaderNum)].name, "flareshader");
     EXPECT_NE(out.surfaceExtra.find("6 // ESurfaceType::Flare V: 0 I: 0 \n"), std::string::npos);
+}
+
+TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
+    ShaderFlagRules rules;
+    ShaderInfo plain = makeImplicitShader("textures/base/wall");
+    ShaderInfo marked = plain;
+    ASSERT_TRUE(applySurfaceParm("ob", marked));
+    EXPECT_EQ(rules.surfaceFlags(plain), 0u);
+    rules.noOb = true;
+    EXPECT_EQ(rules.surfaceFlags(plain), surfaceflags::NoOb);
+    EXPECT_EQ(rules.surfaceFlags(marked), 0u);
+    EXPECT_TRUE(rules.addGlobalFlag("slick"));
+    EXPECT_TRUE(rules.addGlobalFlag("nodamage"));
+    EXPECT_EQ(rules.globalSurfaceFlags, surfaceflags::Slick | surfaceflags::NoDamage);
+    EXPECT_TRUE(rules.addGlobalFlag("default"));  // clears every surface flag, as q3map2 applies it
+    EXPECT_EQ(rules.globalSurfaceFlags, 0u);
+    EXPECT_FALSE(rules.addGlobalFlag("no-such-parm"));
+}
+
+TEST(BspCompile, NoObAndGlobalFlagsReachEveryShaderEntry) {
+    MapLoadOptions load;
+    load.flagRules.noOb = true;
+    ASSERT_TRUE(load.flagRules.addGlobalFlag("slick"));
+    const CompiledBsp plain = compileText(kBoxRoom);
+    const CompiledBsp flagged = compileText(kBoxRoom, {}, load);
+    ASSERT_EQ(flagged.bsp.shaders.size(), plain.bsp.shaders.size());
+    for (size_t i = 0; i < plain.bsp.shaders.size(); ++i)
+        EXPECT_EQ(uint32_t(flagged.bsp.shaders[i].surfaceFlags),
+                  uint32_t(plain.bsp.shaders[i].surfaceFlags) | surfaceflags::NoOb | surfaceflags::Slick)
+            << plain.bsp.shaders[i].name;
 }
 
 TEST(BspCompile, AWorldWithoutBrushesIsAnError) {
