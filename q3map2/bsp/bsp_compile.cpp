@@ -8,6 +8,7 @@
 #include "face_subdivide.h"
 #include "fog_volumes.h"
 #include "log.h"
+#include "max_area_triangles.h"
 #include "model_surfaces.h"
 #include "patch_surfaces.h"
 #include "script.h"
@@ -32,6 +33,7 @@ struct ModelContext {
     BspBuilder& builder;
     std::vector<int>& brushOutputs;
     std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
+    LibcRandom& random;  // -maxarea retries, drawn in surface order
     Log& log;
 };
 
@@ -85,7 +87,10 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         const int refs = filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
         if (refs == 0) continue;
         if (ds.kind == SurfaceKind::Face) {
-            triangulateFace(ds, &triangles);
+            if (c.options.maxArea)
+                triangulateFaceByMaxArea(ds, c.random, &triangles);
+            else
+                triangulateFace(ds, &triangles);
             classifySurface(ds, c.in.map.planes, c.options.classify);
         }
         c.builder.emitSurface(ds, c.options.emit);
@@ -97,6 +102,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.log.debug(countLine(emitted, "emitted drawsurfs"));
     c.log.debug(countLine(triangles.strips, "stripped face surfaces"));
     c.log.debug(countLine(triangles.fans, "fanned face surfaces"));
+    if (c.options.maxArea) c.log.debug(countLine(triangles.maxArea, "maxarea'd face surfaces"));
     c.builder.fixBrushSides(surfaces);
     c.builder.endModel(tree);
 }
@@ -119,7 +125,8 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     }
     std::vector<int> brushOutputs(map.entities.size(), -1);
     std::vector<std::unique_ptr<DrawSurface>> written;
-    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, log};
+    LibcRandom random;
+    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];

@@ -30,6 +30,7 @@ struct BspCompileOptions {
     bool subdivide = true;      // off with -nosubdivide: tessSize ignored
     bool tjunctions = true;     // off with -notjunc
     bool flares = false;        // -flares
+    bool maxArea = false;       // -maxarea: faces triangulated by largest area instead of strips
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

@@ -96,7 +96,8 @@ cli::OptionTable<O> buildTable() {
     t.push_back(flag<O>({"-altsplit"}, &O::alternateSplit, "Alternative split plane score", kImplemented));
     t.push_back(flag<O>({"-deep"}, &O::deep, "Detail faces split the tree too (at the lowest priority)",
                         kImplemented));
-    t.push_back(refused({"-maxarea"}, {}, "Triangulate faces by largest area instead of strips"));
+    t.push_back(flag<O>({"-maxarea"}, &O::maxArea, "Triangulate faces by largest area instead of strips",
+                        kImplemented));
     t.push_back(cli::custom<O>({"-noob"}, {}, 0, "off", "Add the noob surface flag to every shader without surfaceparm ob",
                                kImplemented, [](O& o, std::span<const ArgValue>) { o.flagRules.noOb = true; }));
     t.push_back(cli::custom<O>({"-globalflag"}, {textArg("surfaceparm")}, 1, "none",

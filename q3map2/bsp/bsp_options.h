@@ -33,6 +33,7 @@ struct BspOptions {
     bool flares = false;         // -flares / -noflares (quake3's default: off)
     bool alternateSplit = false;  // -altsplit
     bool deep = false;           // -deep
+    bool maxArea = false;        // -maxarea
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -71,6 +71,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.subdivide = !o.noSubdivide;
     c.tjunctions = !o.noTJunc;
     c.flares = o.flares;
+    c.maxArea = o.maxArea;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;

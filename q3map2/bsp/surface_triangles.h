@@ -14,6 +14,7 @@ namespace q3::bspstage {
 struct TriangulationCounts {
     int strips = 0;
     int fans = 0;
+    int maxArea = 0;  // -maxarea triangulations that succeeded
 };
 
 // Fills ds.indexes of a face surface (adding the centre vertex when it has to fan). Throws

@@ -9,6 +9,7 @@
 #include "bsp_compile.h"
 #include "bsp_test_maps.h"
 #include "face_surfaces.h"
+#include "max_area_triangles.h"
 #include "md3_model.h"
 #include "model_surfaces.h"
 #include "patch_surfaces.h"
@@ -65,6 +66,58 @@ TEST(SurfaceTriangles, MinimumAngleAndArea) {
     EXPECT_NEAR(triangleMinAngleSquaredSin({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 0.5, 1e-6);
     EXPECT_NEAR(triangleArea2x({0, 0, 0}, {2, 0, 0}, {0, 3, 0}), 6.0, 1e-6);
     EXPECT_EQ(triangleMinAngleSquaredSin({0, 0, 0}, {0, 0, 0}, {0, 1, 0}), 0.0);
+}
+
+TEST(SurfaceTriangles, MaxAreaCutsTheBestTriangleThenTheRunsBesideIt) {
+    // In a square every triangle has the same area; the perimeter penalty prefers the ones with
+    // the diagonal as their first side, and the first of those wins.
+    DrawSurface square = faceFrom({{0, 0, 0}, {64, 0, 0}, {64, 64, 0}, {0, 64, 0}});
+    LibcRandom random;
+    TriangulationCounts counts;
+    triangulateFaceByMaxArea(square, random, &counts);
+    EXPECT_EQ(square.indexes, (std::vector<int>{0, 1, 2, 2, 3, 0}));
+    EXPECT_EQ(counts.maxArea, 1);
+}
+
+TEST(SurfaceTriangles, MaxAreaRetriesAroundCollinearVerticesWithoutSlivers) {
+    // A 6.6 x 2 strip with a T-junction vertex (3) on its top edge: the best triangle leaves the
+    // collinear run 2-3-4 alone, so random retries have to find another cut.
+    const std::initializer_list<Vec3> points = {{670, -269.25f, -208}, {664.25f, -266, -208}, {664.25f, -266, -206},
+                                                {667.875f, -268.125f, -206}, {670, -269.25f, -206}};
+    DrawSurface ds = faceFrom(points);
+    LibcRandom random;
+    TriangulationCounts counts;
+    triangulateFaceByMaxArea(ds, random, &counts);
+    ASSERT_EQ(ds.indexes.size(), 9u);
+    EXPECT_EQ(counts.maxArea, 1);
+    double area = 0;
+    for (size_t i = 0; i < 9; i += 3) {
+        const double a = triangleArea2x(xyzOf(ds.verts[size_t(ds.indexes[i])]), xyzOf(ds.verts[size_t(ds.indexes[i + 1])]),
+                                        xyzOf(ds.verts[size_t(ds.indexes[i + 2])]));
+        EXPECT_GE(a, 1.0);
+        area += a;
+    }
+    double fan = 0;  // the face's area, from a fan around vertex 0
+    for (size_t i = 1; i + 1 < 5; ++i)
+        fan += triangleArea2x(xyzOf(ds.verts[0]), xyzOf(ds.verts[i]), xyzOf(ds.verts[i + 1]));
+    EXPECT_NEAR(area, fan, 1e-3);  // the whole face, once
+}
+
+TEST(SurfaceTriangles, MaxAreaFallsBackToAStripWhenEverythingIsASliver) {
+    DrawSurface thin = faceFrom({{0, 0, 0}, {64, 0, 0}, {64, 0.01f, 0}, {0, 0.01f, 0}});
+    LibcRandom random;
+    TriangulationCounts counts;
+    triangulateFaceByMaxArea(thin, random, &counts);
+    EXPECT_EQ(counts.maxArea, 0);
+    EXPECT_EQ(counts.strips + counts.fans, 1);
+    EXPECT_FALSE(thin.indexes.empty());
+}
+
+TEST(LibcRandom, GlibcSequenceWithoutSeed) {
+    LibcRandom random;  // glibc rand() without srand: 1804289383, 846930886, 1681692777, ...
+    EXPECT_EQ(random.next(), 1804289383);
+    EXPECT_EQ(random.next(), 846930886);
+    EXPECT_EQ(random.next(), 1681692777);
 }
 
 TEST(SurfaceTriangles, VertexCacheOrderRotatesEachTriangleToItsSmallestIndex) {
