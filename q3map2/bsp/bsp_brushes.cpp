@@ -236,7 +236,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
                 continue;
             }
             if (b.compileFlags & compileflags::AreaPortal) keepLargestAreaportalSide(b, log);
-            auto [box, edge] = addBrushBevels(b, out.planes);
+            auto [box, edge] = addBrushBevels(b, out.planes, options.bevelSnap);
             out.counts.boxBevels += box;
             out.counts.edgeBevels += edge;
             if (b.compileFlags & compileflags::AreaPortal) ++out.counts.areaportals;

@@ -79,6 +79,7 @@ struct MapLoadOptions {
     bool noHint = false;      // -nohint
     bool noCurves = false;    // -nocurves
     ShaderFlagRules flagRules;  // -noob, -globalflag
+    int bevelSnap = 0;          // -snap
 };
 
 struct MapLoadCounts {
@@ -112,8 +113,9 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes);
 // Sets the brush's content/compile flags, content shader, detail and opaque from its sides.
 void setBrushContents(Brush& brush, bool fullDetail, Log& log);
 // Puts the six axial planes first (adding bevel sides where missing), then adds edge bevels.
-// Returns the number of (box, edge) bevels added.
-std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes);
+// Returns the number of (box, edge) bevels added. bevelSnap > 0 (-snap) moves added axial bevels
+// inwards to multiples of it.
+std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes, int bevelSnap = 0);
 
 // "x y z" as q3map2 reads vectors from keys (missing numbers are 0).
 DVec3 parseVectorKey(const std::string& text);

@@ -69,7 +69,7 @@ cli::OptionTable<O> buildTable() {
                            "Most vertices of a lightmapped surface; larger ones become triangle soup (at least 3)"));
     t.push_back(refused({"-mi"}, {intArg()}, "Most indexes of a meta surface (meta surfaces are not made yet)"));
     t.push_back(refused({"-np"}, {floatArg()}, "Shade angle of meta triangles (meta surfaces are not made yet)"));
-    t.push_back(refused({"-snap"}, {intArg()}, "Snap axial bevel planes to multiples of N"));
+    t.push_back(clampedInt({"-snap"}, &O::bevelSnap, 0, "Snap added axial bevel planes inwards to multiples of N"));
     t.push_back(flag<O>({"-nobrushsnap"}, &O::noBrushSnap, "Do not round brush face vertices to 1/8 unit",
                         kImplemented));
     t.push_back(flag<O>({"-nohint"}, &O::noHint, "Disable hint brushes", kImplemented));

@@ -34,6 +34,7 @@ struct BspOptions {
     bool alternateSplit = false;  // -altsplit
     bool deep = false;           // -deep
     bool maxArea = false;        // -maxarea
+    int bevelSnap = 0;           // -snap (negative: off)
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -151,6 +151,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     load.noHint = options.noHint;
     load.noCurves = options.noCurves;
     load.flagRules = options.flagRules;
+    load.bevelSnap = options.bevelSnap;
     LoadedMap map = loadMapForBsp(file, shaders, load, log);
     log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");

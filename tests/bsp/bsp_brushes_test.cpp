@@ -15,6 +15,16 @@ LoadedMap load(const std::string& text, map::MapFile& file, MapLoadOptions optio
     return loadMapForBsp(file, shaders, options, log);
 }
 
+// A wedge 64 deep: floor, back wall, two sides and a slope from (0,0,size) down to (size,0,0).
+std::string wedgeBrush(int size) {
+    const std::string n = std::to_string(size);
+    return "{\n( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 64 0 ) ( 1 64 0 ) ( 0 64 1 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 " + n + " ) ( 0 64 " + n + " ) ( " + n + " 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n}\n";
+}
+
 TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
     map::MapFile file;
     LoadedMap m = load(worldspawn(boxBrush({0, 0, 0}, {64, 32, 16})), file);
@@ -37,15 +47,7 @@ TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
 }
 
 TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
-    // A wedge: floor, back wall, two sides and a slope from (0,0,64) down to (64,0,0).
-    const std::string wedge = R"({
-( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 64 0 ) ( 1 64 0 ) ( 0 64 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 64 ) ( 0 64 64 ) ( 64 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-}
-)";
+    const std::string wedge = wedgeBrush(64);
     map::MapFile file;
     LoadedMap m = load(worldspawn(wedge), file);
     const Brush& b = m.entities[0].brushes.at(0);
@@ -62,6 +64,25 @@ TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
     // existing sides, so no edge bevel is needed.
     EXPECT_EQ(b.sides.size(), 7u);
     EXPECT_EQ(m.counts.edgeBevels, 0);
+}
+
+TEST(BspBrushes, SnapMovesAddedBevelsInwardsToMultiples) {
+    // A wedge 0..60 wide and high: its +X and +Z bevels land on 48 with -snap 16.
+    const std::string wedge = wedgeBrush(60);
+    map::MapFile file;
+    MapLoadOptions options;
+    options.bevelSnap = 16;
+    LoadedMap m = load(worldspawn(wedge), file, options);
+    const Brush& b = m.entities[0].brushes.at(0);
+    ASSERT_GE(b.sides.size(), 6u);
+    ASSERT_TRUE(b.sides[1].bevel);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[1].planeNum].dist(), 48);
+    ASSERT_TRUE(b.sides[5].bevel);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[5].planeNum].dist(), 48);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[0].planeNum].dist(), 0);  // a real side: never snapped
+    map::MapFile plainFile;
+    LoadedMap plain = load(worldspawn(wedge), plainFile);
+    EXPECT_DOUBLE_EQ(plain.planes[plain.entities[0].brushes.at(0).sides[1].planeNum].dist(), 60);
 }
 
 TEST(BspBrushes, ContentsFromShaders) {
