@@ -56,7 +56,9 @@ cli::OptionTable<O> buildTable() {
                         kImplemented));
     t.push_back(flag<O>({"-nocurves"}, &O::noCurves, "Turn off support for patches", kImplemented));
     t.push_back(flag<O>({"-notjunc"}, &O::noTJunc, "Do not fix T-junctions", kImplemented));
-    t.push_back(refused({"-fakemap"}, {}, "Write fakemap.map containing all world brushes"));
+    t.push_back(flag<O>({"-fakemap"}, &O::fakeMap,
+                        "Write fakemap.map (in the current directory) with all world brushes, bevels included",
+                        kImplemented));
     t.push_back(clampedInt({"-samplesize"}, &O::sampleSize, 1, "Default lightmap sample size (at least 1)"));
     t.push_back(clampedInt({"-minsamplesize"}, &O::minSampleSize, 1, "Smallest lightmap sample size (at least 1)"));
     t.push_back(refused({"-custinfoparms"}, {}, "Read scripts/custinfoparms.txt"));

@@ -35,6 +35,7 @@ struct BspOptions {
     bool deep = false;           // -deep
     bool maxArea = false;        // -maxarea
     int bevelSnap = 0;           // -snap (negative: off)
+    bool fakeMap = false;        // -fakemap: write fakemap.map with the world brushes
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

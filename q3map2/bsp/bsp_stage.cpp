@@ -6,6 +6,7 @@
 
 #include "bsp_compile.h"
 #include "bspfile.h"
+#include "fake_map.h"
 #include "file_io.h"
 #include "log.h"
 #include "map_file.h"
@@ -157,6 +158,11 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");
     log.debug(std::to_string(map.counts.patches) + " patches");
     log.info(std::to_string(map.counts.areaportals) + " areaportals");
+    if (options.fakeMap) {
+        // q3map2 writes it where it runs, whatever the map's folder.
+        log.info("Writing fakemap.map");
+        writeFileAtomic("fakemap.map", fakeMapText(map.entities.front().brushes, map.planes));
+    }
 
     const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
     FlareColors flareColors;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "bsp_test_maps.h"
+#include "fake_map.h"
 
 namespace q3::bspstage {
 namespace {
@@ -83,6 +84,23 @@ TEST(BspBrushes, SnapMovesAddedBevelsInwardsToMultiples) {
     map::MapFile plainFile;
     LoadedMap plain = load(worldspawn(wedge), plainFile);
     EXPECT_DOUBLE_EQ(plain.planes[plain.entities[0].brushes.at(0).sides[1].planeNum].dist(), 60);
+}
+
+TEST(BspBrushes, FakeMapWritesEveryWorldSideAsThreeIntegerPoints) {
+    map::MapFile file;
+    LoadedMap m = load(worldspawn(boxBrush({0, 0, 0}, {64, 32, 16})), file);
+    const std::string text = fakeMapText(m.entities[0].brushes, m.planes);
+    EXPECT_EQ(text.rfind("{\n\"classname\" \"worldspawn\"\n{\n", 0), 0u);
+    size_t sides = 0;
+    for (size_t at = text.find("notexture 0 0 0 1 1\n"); at != std::string::npos;
+         at = text.find("notexture 0 0 0 1 1\n", at + 1))
+        ++sides;
+    EXPECT_EQ(sides, 6u);
+    // The -X side: the huge base winding of the plane x = 0 starts at ( 0 131072 131072 ).
+    EXPECT_NE(text.find("( 0 131072 131072 ) ( 0 -131072 131072 ) ( 0 -131072 -131072 ) notexture"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.substr(text.size() - 4), "}\n}\n");
 }
 
 TEST(BspBrushes, ContentsFromShaders) {
