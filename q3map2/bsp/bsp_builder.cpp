@@ -123,8 +123,9 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
     s.shaderNum = shader(si);
     s.fogNum = ds.fogNum;
     s.lightmapNum = bsp::kLightmapByVertex;
-    if (ds.kind == SurfaceKind::Flare) {
+    if (ds.kind == SurfaceKind::Flare || ds.kind == SurfaceKind::Shader) {
         // A flare has no vertices: its origin, colour and normal travel in the lightmap fields.
+        // A shader-only surface is written the same way, with all three zero.
         s.surfaceType = bsp::MST_FLARE;
         ds.flareOrigin.toArray(s.lightmapOrigin);
         ds.flareColor.toArray(s.lightmapVecs[0]);

@@ -71,7 +71,8 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     const FlareColors noColors;
     // Surface flares are appended while the list is walked, and filtered after the others.
     for (size_t i = 0; i < surfaces.size(); ++i) {
-        if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare) continue;
+        const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
+        if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
         if (c.options.flares)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
@@ -79,12 +80,13 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         DrawSurface& ds = surfaces[i];
         if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
         biasSurfaceTextures(ds);
-        if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare) {
+        if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare && !shaderOnly) {
             DBounds bounds;
             for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
             ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);
         }
-        const int refs = filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
+        // A shader-only surface is written without being referenced by any leaf.
+        const int refs = shaderOnly ? 1 : filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
         if (refs == 0) continue;
         if (ds.kind == SurfaceKind::Face) {
             if (c.options.maxArea)
@@ -116,7 +118,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     if (map.entities.front().brushes.empty() && map.entities.front().patches.empty())
         throw CompileError(in.file.name + ": the world has no brushes or patches, nothing to compile");
     const std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
-    const FaceContext faces{map.planes, in.textures, options.brushSnap};
+    std::vector<std::unique_ptr<DrawSurface>> written;
+    const FaceContext faces{map.planes, in.textures, options.brushSnap, options.skyFix ? &in.shaders : nullptr,
+                            &written};
     BspBuilder builder(map, in.shaders);
     MapFogs fogs;
     if (options.fog) {
@@ -124,7 +128,6 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
         fogs = createMapFogs(map, in.shaders, log);
     }
     std::vector<int> brushOutputs(map.entities.size(), -1);
-    std::vector<std::unique_ptr<DrawSurface>> written;
     LibcRandom random;
     ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
 

@@ -31,6 +31,7 @@ struct BspCompileOptions {
     bool tjunctions = true;     // off with -notjunc
     bool flares = false;        // -flares
     bool maxArea = false;       // -maxarea: faces triangulated by largest area instead of strips
+    bool skyFix = false;        // -skyfix: shader-only surfaces for the sky box images
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

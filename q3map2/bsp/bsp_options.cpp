@@ -87,7 +87,9 @@ cli::OptionTable<O> buildTable() {
                         kImplemented));
     t.push_back(flag<O>({"-noflares"}, &O::flares, "Do not emit flare surfaces (the quake3 default)", kImplemented,
                         false));
-    t.push_back(refused({"-skyfix"}, {}, "Add shader-only surfaces for the sky box images"));
+    t.push_back(flag<O>({"-skyfix"}, &O::skyFix,
+                        "Add shader-only surfaces for the six sky box images (GL_CLAMP border workaround)",
+                        kImplemented));
     t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
     t.push_back(refused({"-debuginset"}, {}, "Push triangle vertices one unit to the triangle centre"));
     t.push_back(refused({"-debugportals"}, {}, "Make surfaces of the passable portals"));

@@ -36,6 +36,7 @@ struct BspOptions {
     bool maxArea = false;        // -maxarea
     int bevelSnap = 0;           // -snap (negative: off)
     bool fakeMap = false;        // -fakemap: write fakemap.map with the world brushes
+    bool skyFix = false;         // -skyfix
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -73,6 +73,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.tjunctions = !o.noTJunc;
     c.flares = o.flares;
     c.maxArea = o.maxArea;
+    c.skyFix = o.skyFix;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;

@@ -1,5 +1,7 @@
 #include "face_surfaces.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdlib>
 
@@ -190,6 +192,31 @@ DrawSurface faceSurface(const BspEntity& entity, int brushIndex, int sideIndex, 
     return ds;
 }
 
+namespace {
+
+// -skyfix (q3map2 DrawSurfaceForSide, DrawSurfaceForShader): a face of a skyParms shader makes
+// the game load the six box images through shader-only surfaces, one per image in the BSP.
+void addSkyFixSurfaces(const ShaderInfo& sky, const FaceContext& context, std::vector<DrawSurface>& out) {
+    if (!context.skyFixShaders || sky.skyParmsEnv.empty()) return;
+    for (const char* suffix : {"_lf", "_rt", "_ft", "_bk", "_up", "_dn"}) {
+        const ShaderInfo& image = context.skyFixShaders->find(sky.skyParmsEnv + suffix);
+        auto uses = [&](const DrawSurface& ds) { return ds.shader == &image; };
+        if (std::any_of(out.begin(), out.end(), uses)) continue;
+        if (context.earlierSurfaces &&
+            std::any_of(context.earlierSurfaces->begin(), context.earlierSurfaces->end(),
+                        [&](const std::unique_ptr<DrawSurface>& ds) { return uses(*ds); }))
+            continue;
+        DrawSurface ds;
+        ds.kind = SurfaceKind::Shader;
+        ds.shader = &image;
+        ds.castShadows = 0;  // q3map2 leaves these surfaces' lighting keys zero
+        ds.receiveShadows = 0;
+        out.push_back(std::move(ds));
+    }
+}
+
+}  // namespace
+
 void addFaceSurfaces(const BspEntity& entity, const FaceContext& context,
                      const std::vector<EntitySurfaceParams>& paramsByMapEntity, std::vector<DrawSurface>& out) {
     for (size_t b = 0; b < entity.brushes.size(); ++b) {
@@ -202,6 +229,7 @@ void addFaceSurfaces(const BspEntity& entity, const FaceContext& context,
             const bool fog = (shader.compileFlags & compileflags::Fog) != 0;
             if (shader.isNoDraw() && !fog) continue;
             const Winding& w = shader.autosprite || shader.noClip ? side.winding : side.visibleHull;
+            addSkyFixSurfaces(shader, context, out);
             out.push_back(faceSurface(entity, int(b), int(s), w, params, context));
             if (fog) {
                 // The inside of a fog volume is seen from within: a flipped copy of the face.

@@ -4,6 +4,8 @@
 // coordinates from the side's projection.
 #pragma once
 
+#include <memory>
+
 #include <vector>
 
 #include "bsp_brushes.h"
@@ -26,6 +28,10 @@ struct FaceContext {
     const PlaneSet& planes;
     const TextureSizes& textures;
     bool brushSnap = true;  // round vertices to 1/8 unit (off with -nobrushsnap)
+    // -skyfix: the shaders to find the sky box images in, and the surfaces of earlier models
+    // (a shader-only surface is made once per shader in the whole BSP).
+    const ShaderTable* skyFixShaders = nullptr;
+    const std::vector<std::unique_ptr<DrawSurface>>* earlierSurfaces = nullptr;
 };
 
 // The lighting keys of a .map entity; `worldGroup` for the world and func_groups.

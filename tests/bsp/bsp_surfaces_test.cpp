@@ -433,6 +433,34 @@ TEST(BspCompile, FlaresOnlyWithTheOption) {
     EXPECT_NE(out.surfaceExtra.find("6 // ESurfaceType::Flare V: 0 I: 0 \n"), std::string::npos);
 }
 
+TEST(BspCompile, SkyFixAddsTheSixBoxImagesOnceAsShaderOnlySurfaces) {
+    // A room whose ceiling is two sky brushes: both sky faces share one set of image surfaces.
+    const std::string map =
+        test::worldspawn(test::hollowRoom({64, 64, 64}, {448, 448, 320}) +
+                         test::boxBrush({64, 64, 300}, {256, 448, 320}, "skies/stars") +
+                         test::boxBrush({256, 64, 300}, {448, 448, 320}, "skies/stars")) +
+        test::pointEntity("info_player_deathmatch", {256, 256, 128});
+    const CompiledBsp plain = compileText(map);
+    BspCompileOptions options;
+    options.skyFix = true;
+    const CompiledBsp fixed = compileText(map, options);
+    ASSERT_EQ(fixed.bsp.surfaces.size(), plain.bsp.surfaces.size() + 6);
+    std::vector<std::string> images;
+    for (size_t i = 0; i < fixed.bsp.surfaces.size(); ++i) {
+        const bsp::Surface& s = fixed.bsp.surfaces[i];
+        if (s.surfaceType != bsp::MST_FLARE) continue;
+        images.push_back(fixed.bsp.shaders[size_t(s.shaderNum)].name);
+        EXPECT_EQ(s.numVerts, 0);
+        EXPECT_EQ(Vec3::fromArray(s.lightmapOrigin), (Vec3{0, 0, 0}));
+        for (int32_t ref : fixed.bsp.leafSurfaces) EXPECT_NE(ref, int32_t(i));  // drawn by no leaf
+    }
+    EXPECT_EQ(images, (std::vector<std::string>{"env/stars_lf", "env/stars_rt", "env/stars_ft", "env/stars_bk",
+                                                "env/stars_up", "env/stars_dn"}));
+    EXPECT_NE(fixed.surfaceExtra.find("// ESurfaceType::Shader V: 0 I: 0 \n{\n\tshader env/stars_lf\n"
+                                      "\tcastShadows 0\n\treceiveShadows 0\n"),
+              std::string::npos);
+}
+
 TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
     ShaderFlagRules rules;
     ShaderInfo plain = makeImplicitShader("textures/base/wall");
