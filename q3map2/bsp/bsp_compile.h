@@ -32,6 +32,7 @@ struct BspCompileOptions {
     bool flares = false;        // -flares
     bool maxArea = false;       // -maxarea: faces triangulated by largest area instead of strips
     bool skyFix = false;        // -skyfix: shader-only surfaces for the sky box images
+    bool renameModelShaders = false;  // -rename: misc_model shaders get _BSP / _RMG_BSP
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

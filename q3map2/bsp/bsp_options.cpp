@@ -62,7 +62,8 @@ cli::OptionTable<O> buildTable() {
     t.push_back(clampedInt({"-samplesize"}, &O::sampleSize, 1, "Default lightmap sample size (at least 1)"));
     t.push_back(clampedInt({"-minsamplesize"}, &O::minSampleSize, 1, "Smallest lightmap sample size (at least 1)"));
     t.push_back(refused({"-custinfoparms"}, {}, "Read scripts/custinfoparms.txt"));
-    t.push_back(refused({"-rename"}, {}, "Append _BSP or _RMG_BSP to misc_model shader names (SoF2)"));
+    t.push_back(flag<O>({"-rename"}, &O::renameModelShaders,
+                        "Append _BSP (_RMG_BSP with spawnflag 1) to misc_model shader names (SoF2)", kImplemented));
     t.push_back(cli::floatValue<O>({"-ne"}, &O::normalEpsilon, Range::any(), "Normal epsilon for plane snapping",
                                    kImplemented));
     t.push_back(cli::floatValue<O>({"-de"}, &O::distanceEpsilon, Range::any(), "Distance epsilon for plane snapping",

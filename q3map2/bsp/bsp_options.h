@@ -37,6 +37,7 @@ struct BspOptions {
     int bevelSnap = 0;           // -snap (negative: off)
     bool fakeMap = false;        // -fakemap: write fakemap.map with the world brushes
     bool skyFix = false;         // -skyfix
+    bool renameModelShaders = false;  // -rename
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -74,6 +74,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.flares = o.flares;
     c.maxArea = o.maxArea;
     c.skyFix = o.skyFix;
+    c.renameModelShaders = o.renameModelShaders;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;

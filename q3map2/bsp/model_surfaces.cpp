@@ -16,6 +16,7 @@ namespace q3::bspstage {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kRandomMapGenerator = 1;  // SoF2's RMG_BSP spawnflag: the -rename suffix
 constexpr int kClipFlags = 2 | 8 | 16 | 128 | 256 | 512 | 1024 | 2048 | 4096;  // autoclip spawnflags
 constexpr int kForceMeta = 4;
 constexpr int kColorToAlpha = 32;
@@ -176,7 +177,10 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
         const int receive = std::atoi(e.value("_receiveShadows", e.value("_rs", parent.source->value("_receiveShadows",
                                       parent.source->value("_rs", "1")))).c_str());
         for (const ModelSurface& surface : surfaces) {
-            const std::string shaderName = remapped(surface.shader, remaps);
+            std::string shaderName = remapped(surface.shader, remaps);
+            if (inputs.renameShaders)
+                shaderName = shaderName.substr(0, shaderKey(shaderName).size()) +
+                             ((spawnFlags & kRandomMapGenerator) ? "_RMG_BSP" : "_BSP");
             const ShaderInfo& shader = inputs.shaders.find(shaderName);
             if (shader.forceMeta) {
                 log.warning(label(e) + ": shader " + shader.name +

@@ -33,6 +33,8 @@ struct ModelInputs {
     const map::MapFile& file;
     const ShaderTable& shaders;
     const Vfs* vfs;  // nullptr: no model can be loaded (each one is warned about)
+    // -rename (SoF2): shader names get _BSP, or _RMG_BSP with spawnflag 1, in place of an extension.
+    bool renameShaders = false;
 };
 
 // Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity).

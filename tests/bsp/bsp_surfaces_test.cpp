@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstring>
+#include <filesystem>
 
 #include "bsp_compile.h"
 #include "bsp_test_maps.h"
 #include "face_surfaces.h"
+#include "file_io.h"
 #include "max_area_triangles.h"
 #include "md3_model.h"
 #include "model_surfaces.h"
@@ -19,6 +22,7 @@
 #include "surface_filter.h"
 #include "surface_triangles.h"
 #include "tjunctions.h"
+#include "vfs.h"
 
 namespace q3::bspstage {
 namespace {
@@ -308,6 +312,36 @@ TEST(Md3Model, VerticesInTriangleOrderAndDuplicatesJoined) {
     EXPECT_EQ(surfaces[0].indexes, (std::vector<int>{0, 1, 2, 1, 2, 0}));
     EXPECT_NEAR(surfaces[0].verts[0].normal.z, 1.0f, 1e-6);
     EXPECT_THROW(parseMd3(std::vector<uint8_t>(50, 0), 0, "short.md3"), std::runtime_error);
+}
+
+TEST(ModelSurfaces, RenameAppendsBspOrRmgBspToTheShaderName) {
+    // A game folder with one model, read through the VFS as a compile would.
+    const std::filesystem::path root =
+        std::filesystem::temp_directory_path() / ("q3bsp-rename-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(root / "baseq3/models/test");
+    const auto bytes = md3Image({{0, 0, 0}, {64, 0, 0}, {0, 64, 0}}, {{0, 2, 1}}, {{{0, 0}}, {{1, 0}}, {{0, 1}}});
+    writeFileAtomic(root / "baseq3/models/test/box.md3", std::string(bytes.begin(), bytes.end()));
+    static Log log(false);
+    static const ShaderTable shaders = test::commonShaders(log);
+    VfsOptions vfsOptions;
+    vfsOptions.basePaths = {root};
+    const Vfs vfs(vfsOptions, log);
+    const map::MapFile file = map::parseMap(
+        test::worldspawn(test::hollowRoom({0, 0, 0}, {256, 256, 256})) +
+            "{\n\"classname\" \"misc_model\"\n\"model\" \"models/test/box.md3\"\n\"origin\" \"64 64 64\"\n}\n"
+            "{\n\"classname\" \"misc_model\"\n\"model\" \"models/test/box.md3\"\n\"origin\" \"96 64 64\"\n"
+            "\"spawnflags\" \"1\"\n}\n",
+        "test.map");
+    LoadedMap map = loadMapForBsp(file, shaders, {}, log);
+    std::vector<DrawSurface> plain, renamed;
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs}, plain, log);
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs, true}, renamed, log);
+    std::filesystem::remove_all(root);
+    ASSERT_EQ(plain.size(), 2u);
+    ASSERT_EQ(renamed.size(), 2u);
+    EXPECT_EQ(map.shaderName(*plain[0].shader), "models/test/skin");
+    EXPECT_EQ(map.shaderName(*renamed[0].shader), "models/test/skin_BSP");
+    EXPECT_EQ(map.shaderName(*renamed[1].shader), "models/test/skin_RMG_BSP");
 }
 
 TEST(ModelTransform, YawThenScaleThenOrigin) {
