@@ -1,20 +1,25 @@
 // The -bsp stage against q3map2 2.5.17n (plain -bsp, no -meta) on the 13 oacmp maps, by what
 // players meet rather than by bytes: the contents at 20000 random points (at least 99.9 % equal),
 // the drawn area of every shader (within 1 %), and the reference's own -vis and -light -fast
-// accepting our BSP, .prt and .srf. Also: the same bytes with one and two threads.
+// accepting our BSP, .prt and .srf. Also: the same bytes with one and two threads, and the lumps
+// that -noob, -globalflag, -snap, -skyfix, -rename and -maxarea change equal to q3map2's.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
+#include <sstream>
 
 #include <tbb/global_control.h>
 
 #include "bsp_compare.h"
 #include "bsp_reference.h"
+#include "bsp_options.h"
 #include "bsp_stage.h"
 #include "file_io.h"
 #include "log.h"
+#include "option_parser.h"
 #include "reference_fixture.h"
 #include "test_data.h"
 
@@ -27,7 +32,7 @@ using namespace q3::bspstage::test;
 constexpr int kPoints = 20000;
 
 // Our compile of a map source in a scratch maps/ folder; returns the .bsp path.
-fs::path ourCompile(const fs::path& mapSource, const fs::path& work) {
+fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options = {}) {
     fs::remove_all(work);
     fs::create_directories(work / "maps");
     const fs::path map = work / "maps" / mapSource.filename();
@@ -38,7 +43,7 @@ fs::path ourCompile(const fs::path& mapSource, const fs::path& work) {
     common.mapPath = fs::path(map).replace_extension(".bsp");
     common.commandLine = "-bsp";
     Log log(false);
-    runBspStage(BspOptions{}, common, log);
+    runBspStage(options, common, log);
     return common.mapPath;
 }
 
@@ -110,6 +115,72 @@ TEST(BspStageDeterminism, SameOutputWithOneAndTwoThreads) {
     EXPECT_TRUE(bsp[0] == bsp[1]);
     EXPECT_TRUE(srf[0] == srf[1]);
 }
+
+// -bsp options against the reference's compile with the same options: the lumps each option
+// changes must come out byte for byte as q3map2 writes them, and the drawn areas stay within 1 %.
+struct OptionCase {
+    std::string name;
+    std::string map;
+    std::string args;
+    bool shaders = false, planes = false, brushes = false, leafSurfaces = false;
+    bool shaderOnlySurfaces = false;  // -skyfix: the MST_FLARE records
+};
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+std::vector<bsp::Surface> flareRecords(const bsp::Bsp& bsp) {
+    std::vector<bsp::Surface> out;
+    for (const bsp::Surface& s : bsp.surfaces)
+        if (s.surfaceType == bsp::MST_FLARE) out.push_back(s);
+    return out;
+}
+
+class BspStageOptions : public conformance::ReferenceTest<OptionCase> {};
+
+TEST_P(BspStageOptions, ChangedLumpsEqualQ3map2s) {
+    const OptionCase& c = GetParam();
+    fs::path mapSource;
+    for (const fs::path& p : q3::test::oacmpMapSources())
+        if (p.stem() == c.map) mapSource = p;
+    ASSERT_FALSE(mapSource.empty()) << c.map;
+    std::vector<std::string> args;
+    std::istringstream words(c.args);
+    for (std::string w; words >> w;) args.push_back(w);
+    BspOptions options;
+    cli::parseOptions(bspOptionTable(), args, cli::ParseContext{}, options);
+    const fs::path refDir = referenceCompile(reference(), mapSource, c.args, false);
+    const fs::path work = fs::temp_directory_path() / ("bsp-stage-opt-" + c.name + "-" + std::to_string(::getpid()));
+    const bsp::Bsp ours = bsp::readBsp(ourCompile(mapSource, work, options));
+    const bsp::Bsp theirs = bsp::readBsp(refDir / (c.map + ".bsp"));
+    if (c.shaders) EXPECT_TRUE(sameBytes(ours.shaders, theirs.shaders));
+    if (c.planes) EXPECT_TRUE(sameBytes(ours.planes, theirs.planes));
+    if (c.brushes) {
+        EXPECT_TRUE(sameBytes(ours.brushes, theirs.brushes));
+        EXPECT_TRUE(sameBytes(ours.brushSides, theirs.brushSides));
+    }
+    if (c.leafSurfaces) EXPECT_TRUE(sameBytes(ours.leafSurfaces, theirs.leafSurfaces));
+    if (c.shaderOnlySurfaces) {
+        EXPECT_FALSE(flareRecords(theirs).empty());
+        EXPECT_TRUE(sameBytes(flareRecords(ours), flareRecords(theirs)));
+    }
+    const AreaComparison areas = compareAreas(drawnAreaByShader(ours), drawnAreaByShader(theirs), 0.01);
+    for (const std::string& s : areas.outside) std::printf("    area differs: %s\n", s.c_str());
+    EXPECT_EQ(areas.within, areas.shaders);
+    fs::remove_all(work);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Oacmp, BspStageOptions,
+    ::testing::Values(
+        OptionCase{"NoObGlobalFlags", "oacmpdm1", "-noob -globalflag slick -globalflag nodamage", true, false, true},
+        OptionCase{"Snap", "oacmpdm4", "-snap 16", false, true, true},
+        OptionCase{"SkyFix", "oacmpdm4", "-skyfix", true, false, false, true, true},
+        OptionCase{"Rename", "oacmpdm1", "-rename", true, false, true},
+        OptionCase{"MaxArea", "oacmpdm1", "-maxarea", true, true, true, true}),
+    [](const ::testing::TestParamInfo<OptionCase>& info) { return info.param.name; });
 
 // The reference -light -fast lights our BSP with our .srf (one map: other runs take a minute).
 class BspStageLight : public conformance::ReferenceTest<std::string> {};
