@@ -112,7 +112,8 @@ cli::OptionTable<O> buildTable() {
                                        throw cli::UsageError("-globalflag: '" + v[0].text + "' is not a surfaceparm");
                                }));
     t.push_back(refused({"-autocaulk"}, {}, "Write <map>.caulk with the sides that could be caulk"));
-    t.push_back(refused({"-texrange"}, {intArg()}, "Limit per-surface texture range"));
+    t.push_back(refused({"-texrange"}, {intArg()},
+                        "Limit the texture range of meta surfaces (meta surfaces are not made yet)"));
     return t;
 }
 
