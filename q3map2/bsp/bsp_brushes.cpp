@@ -195,7 +195,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         ent.classname = std::string(source.classname());
         if (equalsNoCase(ent.classname, "group_info")) continue;
         const bool isWorld = out.entities.empty();
-        const bool isGroup = !isWorld && equalsNoCase(ent.classname, "func_group");
+        const bool isGroup = !isWorld && !options.keepGroups && equalsNoCase(ent.classname, "func_group");
         ent.origin = parseVectorKey(source.value("origin"));
         if (!options.noCurves)
             for (const map::MapPatch& p : source.patches) ent.patches.push_back({&p, source.number});
@@ -236,9 +236,11 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
                 continue;
             }
             if (b.compileFlags & compileflags::AreaPortal) keepLargestAreaportalSide(b, log);
-            auto [box, edge] = addBrushBevels(b, out.planes, options.bevelSnap);
-            out.counts.boxBevels += box;
-            out.counts.edgeBevels += edge;
+            if (!options.keepGroups) {
+                auto [box, edge] = addBrushBevels(b, out.planes, options.bevelSnap);
+                out.counts.boxBevels += box;
+                out.counts.edgeBevels += edge;
+            }
             if (b.compileFlags & compileflags::AreaPortal) ++out.counts.areaportals;
             (b.opaque ? opaque : translucent).push_back(std::move(b));
         }

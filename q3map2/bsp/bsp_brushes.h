@@ -80,6 +80,9 @@ struct MapLoadOptions {
     bool noCurves = false;    // -nocurves
     ShaderFlagRules flagRules;  // -noob, -globalflag
     int bevelSnap = 0;          // -snap
+    // -autocaulk (q3map2's noCollapseGroups): func_groups stay entities of their own, so that the
+    // world's brush numbers are the editor's, and brushes get no bevels.
+    bool keepGroups = false;
 };
 
 struct MapLoadCounts {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "autocaulk.h"
 #include "brush_filter.h"
 #include "count_line.h"
 #include "face_subdivide.h"
@@ -147,6 +148,11 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 return out;
             }
             // Without an entity in open space q3map2 never clips the sides: the world has no faces.
+            if (options.autocaulk && out.world.flood != FloodResult::Empty) {
+                out.autocaulk = autocaulkText(e.brushes, in.shaders);
+                out.stoppedForAutocaulk = true;
+                return out;
+            }
             if (out.world.flood != FloodResult::Empty) {
                 const CullCounts culled = cullSides(e.brushes, map.planes);
                 log.debug(countLine(culled.hidden, "hidden faces culled"));

@@ -33,6 +33,7 @@ struct BspCompileOptions {
     bool maxArea = false;       // -maxarea: faces triangulated by largest area instead of strips
     bool skyFix = false;        // -skyfix: shader-only surfaces for the sky box images
     bool renameModelShaders = false;  // -rename: misc_model shaders get _BSP / _RMG_BSP
+    bool autocaulk = false;     // -autocaulk: stop after the world's visible hulls with the .caulk text
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };
@@ -42,6 +43,8 @@ struct CompiledBsp {
     WorldStructure world;     // .prt or .lin text
     std::string surfaceExtra;  // .srf text
     bool stoppedForLeakTest = false;  // -leaktest on a leaking map: nothing else to write
+    bool stoppedForAutocaulk = false;  // -autocaulk: only the .caulk (and a .lin) to write
+    std::string autocaulk;             // .caulk text
 };
 
 struct CompileInputs {

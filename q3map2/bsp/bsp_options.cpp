@@ -111,7 +111,8 @@ cli::OptionTable<O> buildTable() {
                                    if (!o.flagRules.addGlobalFlag(v[0].text))
                                        throw cli::UsageError("-globalflag: '" + v[0].text + "' is not a surfaceparm");
                                }));
-    t.push_back(refused({"-autocaulk"}, {}, "Write <map>.caulk with the sides that could be caulk"));
+    t.push_back(flag<O>({"-autocaulk"}, &O::autocaulk,
+                        "Only write <map>.caulk (what each world brush side could become) for the editor", kImplemented));
     t.push_back(refused({"-texrange"}, {intArg()},
                         "Limit the texture range of meta surfaces (meta surfaces are not made yet)"));
     return t;

@@ -38,6 +38,7 @@ struct BspOptions {
     bool fakeMap = false;        // -fakemap: write fakemap.map with the world brushes
     bool skyFix = false;         // -skyfix
     bool renameModelShaders = false;  // -rename
+    bool autocaulk = false;      // -autocaulk
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -75,6 +75,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.maxArea = o.maxArea;
     c.skyFix = o.skyFix;
     c.renameModelShaders = o.renameModelShaders;
+    c.autocaulk = o.autocaulk;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;
@@ -155,6 +156,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     load.noCurves = options.noCurves;
     load.flagRules = options.flagRules;
     load.bevelSnap = options.bevelSnap;
+    load.keepGroups = options.autocaulk;
     LoadedMap map = loadMapForBsp(file, shaders, load, log);
     log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");
@@ -172,6 +174,17 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     CompiledBsp compiled =
         compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
 
+    if (compiled.stoppedForAutocaulk) {
+        // q3map2 stops before the portal file: only a leak line, if any, and the .caulk.
+        WorldStructure leakOnly;
+        leakOnly.leaked = true;
+        leakOnly.leakLine = compiled.world.leakLine;
+        writeWorldStructureFiles(leakOnly, bspPath);
+        const fs::path caulkPath = fs::path(bspPath).replace_extension(".caulk");
+        log.info("writing " + caulkPath.string());
+        writeFileAtomic(caulkPath, compiled.autocaulk);
+        return 0;
+    }
     writeWorldStructureFiles(compiled.world, bspPath);
     if (compiled.stoppedForLeakTest) return 0;
     fs::path srfPath = bspPath;

@@ -26,7 +26,10 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     if (!meta) key += "-plain";
     for (char c : extraOptions) key += c == ' ' ? '_' : c;
     const fs::path final = root / key;
-    if (fs::exists(final / (name + ".log")) && fs::exists(final / (name + ".bsp"))) return final;
+    // -autocaulk stops before the BSP: its .caulk stands for it.
+    if (fs::exists(final / (name + ".log")) &&
+        (fs::exists(final / (name + ".bsp")) || fs::exists(final / (name + ".caulk"))))
+        return final;
     fs::remove_all(final);  // an older, incomplete entry
     std::random_device entropy;
     const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
@@ -43,7 +46,7 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
         throw std::runtime_error("reference -bsp failed on " + mapSource.string() + ": " + output.substr(0, 400));
     }
     fs::create_directories(work / "keep");
-    for (const char* ext : {".prt", ".lin", ".bsp", ".srf"})
+    for (const char* ext : {".prt", ".lin", ".bsp", ".srf", ".caulk"})
         if (fs::exists(work / "maps" / (name + ext))) fs::rename(work / "maps" / (name + ext), work / "keep" / (name + ext));
     writeFileAtomic(work / "keep" / (name + ".log"), output);
     fs::remove_all(work / "maps");

@@ -2,7 +2,8 @@
 // players meet rather than by bytes: the contents at 20000 random points (at least 99.9 % equal),
 // the drawn area of every shader (within 1 %), and the reference's own -vis and -light -fast
 // accepting our BSP, .prt and .srf. Also: the same bytes with one and two threads, and the lumps
-// that -noob, -globalflag, -snap, -skyfix, -rename and -maxarea change equal to q3map2's.
+// that -noob, -globalflag, -snap, -skyfix, -rename and -maxarea change, and the -autocaulk file,
+// equal to q3map2's.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -181,6 +182,21 @@ INSTANTIATE_TEST_SUITE_P(
         OptionCase{"Rename", "oacmpdm1", "-rename", true, false, true},
         OptionCase{"MaxArea", "oacmpdm1", "-maxarea", true, true, true, true}),
     [](const ::testing::TestParamInfo<OptionCase>& info) { return info.param.name; });
+
+// -autocaulk: the .caulk of every oacmp map equals q3map2's, and no BSP is written.
+TEST_P(BspStageReference, AutocaulkFileEqualsQ3map2s) {
+    const fs::path mapSource = GetParam();
+    const std::string name = mapSource.stem().string();
+    const fs::path refDir = referenceCompile(reference(), mapSource, "-autocaulk", false);
+    const fs::path work = fs::temp_directory_path() / ("bsp-stage-caulk-" + name + "-" + std::to_string(::getpid()));
+    BspOptions options;
+    options.autocaulk = true;
+    const fs::path bspPath = ourCompile(mapSource, work, options);
+    EXPECT_FALSE(fs::exists(bspPath));
+    EXPECT_FALSE(fs::exists(fs::path(bspPath).replace_extension(".prt")));
+    EXPECT_EQ(readFileText(fs::path(bspPath).replace_extension(".caulk")), readFileText(refDir / (name + ".caulk")));
+    fs::remove_all(work);
+}
 
 // The reference -light -fast lights our BSP with our .srf (one map: other runs take a minute).
 class BspStageLight : public conformance::ReferenceTest<std::string> {};

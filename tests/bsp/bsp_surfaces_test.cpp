@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 
 #include "bsp_compile.h"
 #include "bsp_test_maps.h"
@@ -493,6 +494,30 @@ TEST(BspCompile, SkyFixAddsTheSixBoxImagesOnceAsShaderOnlySurfaces) {
     EXPECT_NE(fixed.surfaceExtra.find("// ESurfaceType::Shader V: 0 I: 0 \n{\n\tshader env/stars_lf\n"
                                       "\tcastShadows 0\n\treceiveShadows 0\n"),
               std::string::npos);
+}
+
+TEST(BspCompile, AutocaulkListsTheWorldBrushesSidesAndStops) {
+    // Six walls and a func_group pillar: the pillar stays its own entity, so only the walls are
+    // listed, each with its one inner side kept and the rest caulkable.
+    const std::string map = test::worldspawn(test::hollowRoom({64, 64, 64}, {448, 448, 320})) +
+                            "{\n\"classname\" \"func_group\"\n" + test::boxBrush({200, 200, 64}, {232, 232, 320}) +
+                            "}\n" + test::pointEntity("info_player_deathmatch", {128, 128, 128});
+    BspCompileOptions options;
+    options.autocaulk = true;
+    MapLoadOptions load;
+    load.keepGroups = true;
+    const CompiledBsp out = compileText(map, options, load);
+    EXPECT_TRUE(out.stoppedForAutocaulk);
+    EXPECT_TRUE(out.bsp.surfaces.empty());
+    std::istringstream lines(out.autocaulk);
+    int count = 0;
+    for (std::string line; std::getline(lines, line); ++count) {
+        const std::string letters = line.substr(line.find(' ') + 1);
+        EXPECT_EQ(letters.size(), 6u) << line;  // no bevels either
+        EXPECT_EQ(std::count(letters.begin(), letters.end(), '-'), 1) << line;
+        EXPECT_EQ(std::count(letters.begin(), letters.end(), 'c'), 5) << line;
+    }
+    EXPECT_EQ(count, 6);
 }
 
 TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
