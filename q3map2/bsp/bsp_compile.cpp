@@ -7,6 +7,7 @@
 #include "brush_filter.h"
 #include "count_line.h"
 #include "face_subdivide.h"
+#include "fog_hull.h"
 #include "fog_volumes.h"
 #include "log.h"
 #include "max_area_triangles.h"
@@ -60,6 +61,10 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.log.debug("--- ClassifyEntitySurfaces ---");
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (entityIndex == 0)
+        if (std::optional<DrawSurface> hull =
+                fogHullSurface(entity.source->value("_foghull"), c.in.map.worldBounds, c.in.shaders))
+            surfaces.push_back(std::move(*hull));
     if (c.options.flares && entityIndex == 0)
         for (DrawSurface& f : lightFlares(c.in.file, c.in.shaders)) surfaces.push_back(std::move(f));
     if (int(c.written.size() + surfaces.size()) > c.options.maxDrawSurfaces)

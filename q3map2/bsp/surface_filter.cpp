@@ -43,6 +43,13 @@ struct Filter {
         return refs;
     }
 
+    // Every open leaf (q3map2 AddReferenceToTree_r): the fog hull is seen from everywhere.
+    int everyLeaf(int node) {
+        const TreeNode& n = tree.node(node);
+        if (n.isLeaf()) return reference(node);
+        return everyLeaf(n.children[0]) + everyLeaf(n.children[1]);
+    }
+
     int point(const DVec3& p, int node) {
         const TreeNode& n = tree.node(node);
         if (n.isLeaf()) return reference(node);
@@ -124,6 +131,8 @@ int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& pla
         }
         case SurfaceKind::Flare:
             return f.point(DVec3(ds.flareOrigin), tree.head);
+        case SurfaceKind::Foghull:
+            return f.everyLeaf(tree.head);
         default:
             return 0;
     }

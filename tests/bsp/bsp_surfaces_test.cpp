@@ -520,6 +520,28 @@ TEST(BspCompile, AutocaulkListsTheWorldBrushesSidesAndStops) {
     EXPECT_EQ(count, 6);
 }
 
+TEST(BspCompile, FogHullIsABoxAroundTheWorldSeenFromEveryOpenLeaf) {
+    const std::string map = test::worldspawn(test::hollowRoom({64, 64, 64}, {448, 448, 320}),
+                                             "\"_foghull\" \"skies/stars\"\n") +
+                            test::pointEntity("info_player_deathmatch", {256, 256, 128});
+    const CompiledBsp out = compileText(map);
+    ASSERT_EQ(out.bsp.surfaces.size(), 7u);  // the six walls, then the hull
+    const bsp::Surface& hull = out.bsp.surfaces.back();
+    EXPECT_STREQ(out.bsp.shaders[size_t(hull.shaderNum)].name, "textures/skies/stars");
+    EXPECT_EQ(hull.surfaceType, bsp::MST_TRIANGLE_SOUP);
+    EXPECT_EQ(hull.numVerts, 8);
+    EXPECT_EQ(hull.numIndexes, 36);
+    // The walls span 48..464 and 48..336: the hull lies 128 beyond.
+    const bsp::DrawVert& first = out.bsp.drawVerts[size_t(hull.firstVert)];
+    EXPECT_EQ(Vec3::fromArray(first.xyz), (Vec3{-80, -80, -80}));
+    const bsp::DrawVert& last = out.bsp.drawVerts[size_t(hull.firstVert + 7)];
+    EXPECT_EQ(Vec3::fromArray(last.xyz), (Vec3{592, -80, 464}));
+    int referencing = 0;
+    for (int32_t ref : out.bsp.leafSurfaces) referencing += ref == 6;
+    EXPECT_EQ(referencing, 1);  // the room's one open leaf
+    EXPECT_NE(out.surfaceExtra.find("6 // ESurfaceType::Foghull V: 8 I: 36 \n"), std::string::npos);
+}
+
 TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
     ShaderFlagRules rules;
     ShaderInfo plain = makeImplicitShader("textures/base/wall");
