@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "log.h"
+#include "model_numbers.h"
 #include "script.h"
 #include "shader_info.h"
 
@@ -284,6 +285,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         if (b.detail) ++out.counts.detailBrushes;
         out.worldBounds.add(b.bounds);
     }
+    numberModels(out, options.resolveClones, log);
     for (const BspEntity& e : out.entities) out.counts.patches += int(e.patches.size());
     return out;
 }

@@ -66,6 +66,7 @@ struct BspEntity {
     DVec3 origin;  // "origin" key (0 0 0 when absent), moved by an origin brush
     bool hasOriginBrush = false;
     DVec3 originBrushCenter;  // brushes were moved by minus this; textures stay where the map put them
+    std::string model;  // the "model" key it is written with ("*3"), empty for none (numberModels)
 
     // Point entities start the flood that finds the map's inside.
     bool isPointEntity() const;
@@ -83,6 +84,7 @@ struct MapLoadOptions {
     // -autocaulk (q3map2's noCollapseGroups): func_groups stay entities of their own, so that the
     // world's brush numbers are the editor's, and brushes get no bevels.
     bool keepGroups = false;
+    bool resolveClones = true;  // off for -onlyents, which numbers clones like other models
 };
 
 struct MapLoadCounts {

@@ -94,6 +94,7 @@ void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const Sh
     const std::vector<bsp::Entity> old = bsp::parseEntities(bsp.entities, bspPath.string());
     MapLoadOptions load;
     load.epsilons = {options.normalEpsilon, options.distanceEpsilon};
+    load.resolveClones = false;
     const LoadedMap map = loadMapForBsp(file, shaders, load, log);
     EntityLumpOptions entityOptions;
     entityOptions.keepLights = options.keepLights;

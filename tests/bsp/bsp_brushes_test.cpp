@@ -103,6 +103,31 @@ TEST(BspBrushes, FakeMapWritesEveryWorldSideAsThreeIntegerPoints) {
     EXPECT_EQ(text.substr(text.size() - 4), "}\n}\n");
 }
 
+TEST(BspBrushes, ClonesShareTheirParentsModelAndLoseTheirBrushes) {
+    auto brushEntity = [](const std::string& keys, double x) {
+        return "{\n\"classname\" \"func_static\"\n" + keys + boxBrush({x, 0, 0}, {x + 32, 32, 32}) + "}\n";
+    };
+    const std::string text = worldspawn(boxBrush({0, 0, -16}, {512, 512, 0})) +
+                             brushEntity("\"_clonename\" \"pillar\"\n", 0) +
+                             brushEntity("\"_clone\" \"pillar\"\n\"origin\" \"64 0 0\"\n", 100) +
+                             brushEntity("", 200) + brushEntity("\"_ins\" \"nobody\"\n", 300);
+    map::MapFile file;
+    LoadedMap m = load(text, file);
+    ASSERT_EQ(m.entities.size(), 5u);
+    EXPECT_EQ(m.entities[1].model, "*1");
+    EXPECT_EQ(m.entities[2].model, "*1");  // the clone draws its parent's model
+    EXPECT_TRUE(m.entities[2].brushes.empty());
+    EXPECT_EQ(m.entities[3].model, "*2");  // clones take no number
+    EXPECT_EQ(m.entities[4].model, "");    // no such parent: no model key, brushes kept
+    EXPECT_EQ(m.entities[4].brushes.size(), 1u);
+    MapLoadOptions onlyEnts;
+    onlyEnts.resolveClones = false;
+    map::MapFile file2;
+    LoadedMap plain = load(text, file2, onlyEnts);
+    EXPECT_EQ(plain.entities[2].model, "*2");
+    EXPECT_EQ(plain.entities[4].model, "*4");
+}
+
 TEST(BspBrushes, ContentsFromShaders) {
     map::MapFile file;
     const std::string text = worldspawn(boxBrush({0, 0, 0}, {64, 64, 64}, "liquids/water") +
