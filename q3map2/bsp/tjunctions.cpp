@@ -47,7 +47,8 @@ void normalVectors(const Vec3& forward, Vec3& right, Vec3& up) {
     up = cross(right, forward);
 }
 
-bool nearlyEqual(float a, float b, float epsilon) { return std::fabs(a - b) <= epsilon; }
+// Strictly within, as q3map2's float_equal_epsilon: a point exactly 0.25 off a line is not on it.
+bool nearlyEqual(float a, float b, float epsilon) { return std::fabs(b - a) < epsilon; }
 
 // The edge lines, with an index that finds the first line (in creation order) holding both ends of
 // an edge without testing every line: lines along a world axis are filed under the unit cell of
