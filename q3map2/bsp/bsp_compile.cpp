@@ -6,6 +6,7 @@
 #include "autocaulk.h"
 #include "brush_filter.h"
 #include "count_line.h"
+#include "debug_portals.h"
 #include "face_subdivide.h"
 #include "fog_hull.h"
 #include "fog_volumes.h"
@@ -61,6 +62,10 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     c.log.debug("--- ClassifyEntitySurfaces ---");
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (c.options.debugPortals && entityIndex == 0) {
+        c.log.debug("--- MakeDebugPortalSurfs ---");
+        for (DrawSurface& ds : debugPortalSurfaces(tree, c.in.map.planes, c.in.shaders)) surfaces.push_back(std::move(ds));
+    }
     if (entityIndex == 0)
         if (std::optional<DrawSurface> hull =
                 fogHullSurface(entity.source->value("_foghull"), c.in.map.worldBounds, c.in.shaders))

@@ -34,6 +34,7 @@ struct BspCompileOptions {
     bool skyFix = false;        // -skyfix: shader-only surfaces for the sky box images
     bool renameModelShaders = false;  // -rename: misc_model shaders get _BSP / _RMG_BSP
     bool autocaulk = false;     // -autocaulk: stop after the world's visible hulls with the .caulk text
+    bool debugPortals = false;  // -debugportals: a face for every passable portal of the world tree
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

@@ -93,7 +93,8 @@ cli::OptionTable<O> buildTable() {
                         kImplemented));
     t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
     t.push_back(refused({"-debuginset"}, {}, "Push triangle vertices one unit to the triangle centre"));
-    t.push_back(refused({"-debugportals"}, {}, "Make surfaces of the passable portals"));
+    t.push_back(flag<O>({"-debugportals"}, &O::debugPortals,
+                        "Make surfaces (shader debugportals) of the world tree's passable portals", kImplemented));
     t.push_back(refused({"-debugclip"}, {}, "Make misc_model autoclip brushes visible"));
     t.push_back(refused({"-clipdepth"}, {floatArg()}, "Thickness of misc_model autoclip brushes"));
     for (const char* colour : {"-sRGBtex", "-nosRGBtex", "-sRGBcolor", "-nosRGBcolor", "-nosRGB"})

@@ -39,6 +39,7 @@ struct BspOptions {
     bool skyFix = false;         // -skyfix
     bool renameModelShaders = false;  // -rename
     bool autocaulk = false;      // -autocaulk
+    bool debugPortals = false;   // -debugportals
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

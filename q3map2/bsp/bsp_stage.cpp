@@ -76,6 +76,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.skyFix = o.skyFix;
     c.renameModelShaders = o.renameModelShaders;
     c.autocaulk = o.autocaulk;
+    c.debugPortals = o.debugPortals;
     c.verboseEntities = o.verboseEntities;
     c.maxDrawSurfaces = std::abs(common.maxMapDrawSurfs);
     c.entities.keepLights = o.keepLights;

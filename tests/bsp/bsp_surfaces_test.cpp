@@ -542,6 +542,25 @@ TEST(BspCompile, FogHullIsABoxAroundTheWorldSeenFromEveryOpenLeaf) {
     EXPECT_NE(out.surfaceExtra.find("6 // ESurfaceType::Foghull V: 8 I: 36 \n"), std::string::npos);
 }
 
+TEST(BspCompile, DebugPortalsDrawThePortalOfARoomAcrossABlockBoundary) {
+    // x = 1024 cuts the room in two leaves: one passable portal between them.
+    const std::string map = test::worldspawn(test::hollowRoom({900, 64, 64}, {1100, 448, 320})) +
+                            test::pointEntity("info_player_deathmatch", {950, 256, 128});
+    EXPECT_EQ(compileText(map).bsp.surfaces.size(), 6u);  // the walls' two halves make one hull each
+    BspCompileOptions options;
+    options.debugPortals = true;
+    const CompiledBsp out = compileText(map, options);
+    ASSERT_EQ(out.bsp.surfaces.size(), 7u);
+    const bsp::Surface& portal = out.bsp.surfaces.back();
+    EXPECT_STREQ(out.bsp.shaders[size_t(portal.shaderNum)].name, "debugportals");
+    ASSERT_EQ(portal.numVerts, 4);
+    for (int i = 0; i < 4; ++i) {
+        const bsp::DrawVert& v = out.bsp.drawVerts[size_t(portal.firstVert + i)];
+        EXPECT_EQ(v.xyz[0], 1024.0f);
+        EXPECT_EQ(v.color[3], 32);
+    }
+}
+
 TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
     ShaderFlagRules rules;
     ShaderInfo plain = makeImplicitShader("textures/base/wall");
