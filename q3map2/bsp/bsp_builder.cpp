@@ -22,6 +22,23 @@ int32_t truncateToInt(double v) {
 
 bool isLightGridBrush(const Brush& b) { return (b.compileFlags & compileflags::LightGrid) != 0; }
 
+// -debuginset: each triangle, in index order, pulls its corners one unit towards its centre (a
+// vertex shared by several triangles moves once per triangle), so the triangles show apart.
+void insetTriangles(DrawSurface& ds) {
+    for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) {
+        float* corner[3];
+        for (int k = 0; k < 3; ++k) corner[k] = ds.verts[size_t(ds.indexes[i + size_t(k)])].xyz;
+        const Vec3 centre = (Vec3::fromArray(corner[0]) + Vec3::fromArray(corner[1]) + Vec3::fromArray(corner[2])) / 3.0f;
+        for (float* c : corner) {
+            // Normalised in double precision, as q3map2's VectorNormalize does.
+            const DVec3 toCentre(centre - Vec3::fromArray(c));
+            const double len = length(toCentre);
+            const Vec3 step = len == 0 ? Vec3{0, 0, 0} : (toCentre / len).toFloat();
+            (Vec3::fromArray(c) + step).toArray(c);
+        }
+    }
+}
+
 }  // namespace
 
 BspBuilder::BspBuilder(const LoadedMap& map, const ShaderTable& shaders) : map_(map), shaders_(shaders) {
@@ -159,6 +176,7 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
         const bool soup = (ds.lightmapAxis == Vec3{0, 0, 0} && !ds.planar) || ds.kind == SurfaceKind::Triangles ||
                           ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts;
         s.surfaceType = soup ? bsp::MST_TRIANGLE_SOUP : bsp::MST_PLANAR;
+        if (options.debugInset) insetTriangles(ds);
         if (ds.indexes.size() > 16 && !si.autosprite) optimizeForVertexCache(ds.indexes);
     }
     if (ds.planar) ds.planeNormal.toArray(s.lightmapVecs[2]);

@@ -20,6 +20,7 @@ namespace q3::bspstage {
 
 struct SurfaceEmitOptions {
     int maxLightmappedVerts = 64;  // -mv: larger surfaces are written as triangle soup
+    bool debugInset = false;       // -debuginset: triangle corners pulled 1 unit towards their centre
 };
 
 class BspBuilder {

@@ -92,7 +92,8 @@ cli::OptionTable<O> buildTable() {
                         "Add shader-only surfaces for the six sky box images (GL_CLAMP border workaround)",
                         kImplemented));
     t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
-    t.push_back(refused({"-debuginset"}, {}, "Push triangle vertices one unit to the triangle centre"));
+    t.push_back(flag<O>({"-debuginset"}, &O::debugInset, "Push triangle vertices one unit to the triangle centre",
+                        kImplemented));
     t.push_back(flag<O>({"-debugportals"}, &O::debugPortals,
                         "Make surfaces (shader debugportals) of the world tree's passable portals", kImplemented));
     t.push_back(refused({"-debugclip"}, {}, "Make misc_model autoclip brushes visible"));

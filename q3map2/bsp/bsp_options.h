@@ -40,6 +40,7 @@ struct BspOptions {
     bool renameModelShaders = false;  // -rename
     bool autocaulk = false;      // -autocaulk
     bool debugPortals = false;   // -debugportals
+    bool debugInset = false;     // -debuginset
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

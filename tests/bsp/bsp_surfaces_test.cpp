@@ -561,6 +561,26 @@ TEST(BspCompile, DebugPortalsDrawThePortalOfARoomAcrossABlockBoundary) {
     }
 }
 
+TEST(BspCompile, DebugInsetPullsEveryCornerIntoItsFace) {
+    BspCompileOptions options;
+    options.emit.debugInset = true;
+    const CompiledBsp out = compileText(kBoxRoom, options);
+    ASSERT_EQ(out.bsp.surfaces.size(), 6u);
+    const Vec3 lo{64, 64, 64}, hi{448, 448, 320};
+    for (const bsp::Surface& s : out.bsp.surfaces) {
+        for (int i = 0; i < s.numVerts; ++i) {
+            const Vec3 p = Vec3::fromArray(out.bsp.drawVerts[size_t(s.firstVert + i)].xyz);
+            int onWall = 0, inside = 0;
+            for (int k = 0; k < 3; ++k) {
+                onWall += p[k] == lo[k] || p[k] == hi[k];
+                inside += p[k] > lo[k] + 0.5f && p[k] < hi[k] - 0.5f;
+            }
+            EXPECT_EQ(onWall, 1);  // still on its wall...
+            EXPECT_EQ(inside, 2);  // ...but away from the wall's edges
+        }
+    }
+}
+
 TEST(ShaderFlagRules, NoObSparesSurfaceparmObAndGlobalFlagsClearThenSet) {
     ShaderFlagRules rules;
     ShaderInfo plain = makeImplicitShader("textures/base/wall");
