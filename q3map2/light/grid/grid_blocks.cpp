@@ -72,15 +72,15 @@ bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
 
 }  // namespace
 
-void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
-                       const ContributionSettings& settings,
-                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
-                       const BspTree* solidTree) {
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree) {
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
     const std::vector<float> envelopes = lightEnvelopes(lights, settings.forceFast);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         BlockLights reaching;
+        std::vector<GridBlockPoint> points;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
             const Bounds bounds = gridBlockBounds(block, grid.mins, grid.size, margin);
@@ -92,16 +92,30 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                     reaching.clearOfSolid.push_back(
                         lights[i].type != LightType::Sun && boxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
             }
+            points.clear();
             block.forEachPoint([&](int x, int y, int z) {
                 const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
                                   grid.mins.z + float(z) * grid.size.z};
-                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, reaching);
+                points.push_back({size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin});
             });
+            lightBlock(points, reaching);
             progress.advance(block.pointCount());
         }
     };
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
+}
+
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                       const ContributionSettings& settings,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
+                       const BspTree* solidTree) {
+    lightGridBlocks(
+        grid, lights, margin, settings, blockEdge, threads, progress,
+        [&](std::span<const GridBlockPoint> points, const BlockLights& reaching) {
+            for (const GridBlockPoint& p : points) lightPoint(p.index, p.origin, reaching);
+        },
+        solidTree);
 }
 
 }  // namespace q3::light

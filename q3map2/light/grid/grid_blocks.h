@@ -91,4 +91,15 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                        int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
                        const BspTree* solidTree = nullptr);
 
+// The same walk, one call per block with all its points (for callers that trace a block's rays
+// together).
+struct GridBlockPoint {
+    size_t index;
+    Vec3 origin;
+};
+using GridBlockFn = std::function<void(std::span<const GridBlockPoint> points, const BlockLights& lights)>;
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree = nullptr);
+
 }  // namespace q3::light
