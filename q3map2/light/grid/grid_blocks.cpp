@@ -37,11 +37,13 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out) {
-    out.clear();
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]) &&
-            !areaLightSurelyDarkIn(lights[i], bounds, settings))
-            out.push_back(static_cast<uint32_t>(i));
+    gridLightsReaching(lights, LightReach(lights, envelopes), bounds, settings, out);
+}
+
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out) {
+    reach.reaching(bounds, out);
+    std::erase_if(out, [&](uint32_t i) { return !lights[i].affectsGrid || areaLightSurelyDarkIn(lights[i], bounds, settings); });
 }
 
 namespace {
@@ -78,13 +80,14 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
     const std::vector<float> envelopes = lightEnvelopes(lights, settings.forceFast);
+    const LightReach reach(lights, envelopes);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         BlockLights reaching;
         std::vector<GridBlockPoint> points;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
             const Bounds bounds = gridBlockBounds(block, grid.mins, grid.size, margin);
-            gridLightsReaching(lights, envelopes, bounds, settings, reaching.candidates);
+            gridLightsReaching(lights, reach, bounds, settings, reaching.candidates);
             reaching.clearOfSolid.clear();
             if (solidTree) {
                 // Sun rays run to the sky, not to an origin: they keep their own walk.

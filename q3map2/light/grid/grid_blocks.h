@@ -13,6 +13,7 @@
 
 #include "bsp_tree.h"
 #include "light_contribution.h"
+#include "light_reach.h"
 #include "lights.h"
 #include "vec3.h"
 
@@ -46,6 +47,9 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 // the grid, their envelope (`envelopes`, lightEnvelope of each light) reaches the box, and area
 // lights may add more than their -fast tolerance there (areaLightSurelyDarkIn).
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out);
+// The same from an index of the lights' envelopes built once for many blocks.
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
 
 // The nudges tried for grid points in solid (nearest first), with their box taken once.
