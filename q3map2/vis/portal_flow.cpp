@@ -279,7 +279,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
         }
     }
     const std::vector<Box> clusterBounds = clusterPortalBounds(graph);
-    ClusterKnowledge known(graph);
+    ClusterKnowledge known(graph, clusterVis);
     FlowShared shared{graph, exits, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
@@ -302,7 +302,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
         if (options.mode == FlowMode::Passage) continue;
         for (int portal : wave)
             if (!graph.portals[static_cast<size_t>(portal)].removed)
-                known.learn(portal, clusterVis.row(static_cast<size_t>(portal)));
+                known.learn(portal);
     }
     return clusterVis;
 }
