@@ -9,6 +9,7 @@
 #include "lightmap_layout.h"
 #include "light_text.h"
 #include "surface_lighting.h"
+#include "trace_pieces.h"
 #include "patch.h"
 
 namespace q3::light {
@@ -186,7 +187,9 @@ void buildScene(LightContext& ctx) {
     const BspTree* tree = ctx.tree.get();
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
     options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullClearOfSolid(points); };
-    ctx.scene = std::make_unique<TraceScene>(ctx.surfaces, options);
+    // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
+    // beside it is stopped (trace_pieces.h).
+    ctx.scene = std::make_unique<TraceScene>(traceCasterPieces(ctx.surfaces, ctx.bsp, options), options);
 }
 
 void createLights(LightContext& ctx, Log& log) {
