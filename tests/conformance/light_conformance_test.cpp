@@ -31,6 +31,9 @@ struct Limits {
     double gridAmbientCorrelation = 0.98;   // per-point sums
     double gridDirectedCorrelation = 0.98;
     double gridDirection = 0.95;          // share of lit points within 15 degrees of the reference
+    // Over every point, against the reference's -threads 1 run, whose in-solid points ours places
+    // the same way (ambient and directed).
+    double gridOneThreadCorrelation = 0.98;
     double vertexRatio = 0.05;            // |ratio - 1|
     double lightmappedCount = 0.02;       // |ours - reference| / reference lightmapped surfaces
 };
@@ -58,15 +61,13 @@ std::vector<MapCase> cases() {
     // 1.000.
     out.push_back(MapCase{"oacmpdm5", {"-fast"}, {}});
     {
-        // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights.
-        // Measured at -fast: lightmaps 1.005, correlation 0.997, classes within 0.1 %, grid 0.998 /
-        // 1.001, directed correlation 0.993, directions 97.9 %; the ambient correlation 0.94 ..
-        // 0.999 over runs (0.953 with the pair of reference runs in docs/conformance.md). 71 % of its grid lies in solid, the reference's two runs agree on a
-        // quarter of the points only, and which quarter (its random nudges) moves that figure and
-        // the ambient total by a few percent.
+        // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights;
+        // 71 % of its grid lies in solid, where q3map2 nudges points at random. Measured at -fast:
+        // lightmaps 1.005, correlation 0.997, classes within 0.1 %, grid 0.999 / 0.999,
+        // correlations 1.000 / 1.000, directions 99.6 %; against the -threads 1 reference's whole
+        // grid 0.9999 / 0.9998 (0.87 / 0.98 while in-solid points took a fixed search).
         MapCase c{"oacmpctf2", {"-fast"}, {}};
-        c.limits.gridAmbient = 0.05;
-        c.limits.gridAmbientCorrelation = 0.80;
+        c.limits.gridOneThreadCorrelation = 0.999;
         out.push_back(c);
     }
     // Radiosity: every tolerance holds (lightmaps 0.995, correlation 0.995, shadow class 0.952,
@@ -169,6 +170,10 @@ TEST_P(LightConformance, OursMatchesTheReference) {
     EXPECT_GE(g.agreed.ambientCorrelation, lim.gridAmbientCorrelation) << "grid ambient correlation";
     EXPECT_GE(g.agreed.directedCorrelation, lim.gridDirectedCorrelation) << "grid directed correlation";
     EXPECT_GE(g.agreed.directionFraction, lim.gridDirection) << "grid directions within 15 degrees";
+
+    const GridFigures oneThread = compareGrids(ref2Lit.bsp.lightGrid, ourLit.bsp.lightGrid, nullptr);
+    EXPECT_GE(oneThread.all.ambientCorrelation, lim.gridOneThreadCorrelation) << "grid ambient, -threads 1";
+    EXPECT_GE(oneThread.all.directedCorrelation, lim.gridOneThreadCorrelation) << "grid directed, -threads 1";
 
     if (c.vertexes.vertexes > 0) {
         EXPECT_LE(std::abs(c.vertexes.ratio - 1), lim.vertexRatio) << "vertex colours";

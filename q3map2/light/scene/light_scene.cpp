@@ -198,11 +198,13 @@ void createLights(LightContext& ctx, Log& log) {
     all.insert(all.end(), ctx.mapLights.begin(), ctx.mapLights.end());
     std::vector<bsp::Entity> targets = all;
     targets.insert(targets.end(), ctx.mapTargets.begin(), ctx.mapTargets.end());
-    ctx.lights = createEntityLights(all, targets, ctx.scales, log, name);
+    // Light creation draws from the C library sequence first, as q3map2's does before its grid.
+    ctx.random = CLibraryRandom();
+    ctx.lights = createEntityLights(all, targets, ctx.scales, log, name, ctx.random);
 
     const bool noShaderSun = ctx.world.noShaderSun;
     std::vector<Light> shaderLights = createShaderLights(
-        ctx.bsp, ctx.shaders.shaders, ctx.skyIndices, noShaderSun, ctx.scales, [&ctx](int surfaceNum) {
+        ctx.bsp, ctx.shaders.shaders, ctx.skyIndices, noShaderSun, ctx.scales, ctx.random, [&ctx](int surfaceNum) {
             const SceneSurface& s = ctx.surfaces[static_cast<size_t>(surfaceNum)];
             EmitterGeometry g;
             g.xyz = s.xyz;
