@@ -16,7 +16,8 @@ using test::entity;
 
 std::vector<Light> lightsOf(const std::vector<bsp::Entity>& ents, const LightScales& scales = {}) {
     test::CapturingLog cap;
-    return createEntityLights(ents, ents, scales, cap.log, "test.bsp");
+    CLibraryRandom random;
+    return createEntityLights(ents, ents, scales, cap.log, "test.bsp", random);
 }
 
 TEST(EntityLights, DefaultPointLightUsesPointScaleAndWhite) {
@@ -95,7 +96,8 @@ TEST(EntityLights, SpotlightFromTarget) {
 TEST(EntityLights, MissingTargetWarnsAndStaysPoint) {
     test::CapturingLog cap;
     std::vector<bsp::Entity> ents{entity({{"classname", "light"}, {"target", "nowhere"}})};
-    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp");
+    CLibraryRandom random;
+    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp", random);
     ASSERT_EQ(lights.size(), 1u);
     EXPECT_EQ(lights[0].type, LightType::Point);
     ASSERT_EQ(cap.warnings.size(), 1u);
@@ -122,7 +124,8 @@ TEST(EntityLights, SamplesJitterDeterministicallyAndSplitIntensity) {
 TEST(EntityLights, InvalidStyleIsAnError) {
     std::vector<bsp::Entity> ents{entity({{"classname", "light"}, {"style", "300"}})};
     test::CapturingLog cap;
-    EXPECT_THROW(createEntityLights(ents, ents, {}, cap.log, "test.bsp"), CompileError);
+    CLibraryRandom random;
+    EXPECT_THROW(createEntityLights(ents, ents, {}, cap.log, "test.bsp", random), CompileError);
     auto ok = lightsOf({entity({{"classname", "light"}, {"_style", "5"}})});
     EXPECT_EQ(ok[0].style, 5);
 }
@@ -180,7 +183,8 @@ TEST(ControlledLights, ClampsWithWarningsNamingEntityAndKey) {
                                           {"angle_penumbra", "30"},
                                           {"spherical_ambient", "1.5"},
                                           {"_color", "2 1 0"}})};
-    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp");
+    CLibraryRandom random;
+    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp", random);
     ASSERT_EQ(lights.size(), 1u);
     const ControlledParams& p = *lights[0].controlled;
     EXPECT_FLOAT_EQ(p.brightness, 1);
@@ -250,8 +254,9 @@ TEST(SunLights, ShaderSunSamplesAndScale) {
     sun.devianceDeg = 2;
     sun.filterRadius = 8;
     std::vector<Light> a, b;
-    appendSunLights(a, sun, 3, scales, 42);
-    appendSunLights(b, sun, 3, scales, 42);
+    CLibraryRandom first, second;
+    appendSunLights(a, sun, 3, scales, first);
+    appendSunLights(b, sun, 3, scales, second);
     ASSERT_EQ(a.size(), 4u);
     EXPECT_NEAR(a[0].normal.x, sun.direction.x, 1e-6);
     EXPECT_NEAR(a[0].normal.z, sun.direction.z, 1e-6);
@@ -265,7 +270,7 @@ TEST(SunLights, ShaderSunSamplesAndScale) {
     }
     scales.oneSky = true;
     std::vector<Light> c;
-    appendSunLights(c, sun, 3, scales, 1);
+    appendSunLights(c, sun, 3, scales, first);
     EXPECT_EQ(c[0].skyIndex, -1);
 }
 

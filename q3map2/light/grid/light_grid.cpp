@@ -1,7 +1,7 @@
 // The legacy light grid (q3map2 SetupGrid / TraceGrid): layout from model 0 and worldspawn
 // "gridsize", lit in parallel by blocks of points (lights culled once per block), in-solid points
-// moved by a fixed search (not random), every occluder counted, and the lump-15 encoding of
-// grid_encode.
+// moved by q3map2's random nudges (drawn in its single-thread order), every occluder counted, and
+// the lump-15 encoding of grid_encode.
 #include <algorithm>
 
 #include "grid_blocks.h"
@@ -49,15 +49,13 @@ void lightGrid(LightContext& ctx, Log& log) {
     const int numPoints = layout.numPoints();
     const GridOptions gridOptions = gridOptionsFromContext(ctx);
     const LightingEnv env = gridLightingEnv(ctx, layout.size);
-    // q3map2 moves a point in solid at random: 200 tries, the k-th at k/200 x (random - 0.5) of a
-    // cell along each axis, so its box reaches half a cell only in the limit and its tries seldom go
-    // past 0.4 of one. That box, to 0.4 of a cell, is searched here in a fixed order. (The full half
-    // cell lit points q3map2 leaves dark: oacmpctf2 -fast grid ambient correlation 0.936 against
-    // 0.999 now, oacmpdm6 ambient 1.020 against 1.004.)
-    constexpr float kNudgeReach = 0.8f;  // of half a cell
-    const Vec3 nudgeBox = layout.size * (0.5f * kNudgeReach);
-    const float nudgeRadius = length(nudgeBox);
-    const GridNudges nudges(nudgeOffsetsInBox(nudgeBox, 4));
+    // Points are placed first, one after another in index order, as q3map2's TraceGrid places them
+    // on one thread: a point in solid takes the first free one of its random nudges, whose values
+    // continue the sequence light creation drew from (placeGridAsTraceGrid). The nudges reach
+    // half a cell along each axis at most.
+    const float nudgeRadius = length(layout.size * 0.5f);
+    const std::vector<std::optional<PlacedGridPoint>> placements = placeGridAsTraceGrid(
+        ctx.tree.get(), ctx.bsp, GridLattice{layout.bounds, layout.mins, layout.size}, ctx.random, ctx.threads);
     const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);
@@ -68,8 +66,8 @@ void lightGrid(LightContext& ctx, Log& log) {
     // the lights that reach its block, in light order.
     LightingEnv clearEnv = env;
     clearEnv.clearOfSolid = true;
-    auto place = [&](size_t i, Vec3 lattice) {
-        std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, nudges);
+    auto place = [&](size_t i, Vec3) {
+        const std::optional<PlacedGridPoint>& placed = placements[i];
         if (!placed) {
             points[i] = bsp::GridPoint{};
             inSolid[i] = 1;
