@@ -169,7 +169,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 log.debug(countLine(culled.coincident, "coincident faces culled"));
                 addFaceSurfaces(e, faces, params, surfaces);
             }
-            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces, log);
+            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs, options.renameModelShaders, options.classify.maxSurfaceVerts}, surfaces, log);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
@@ -187,7 +187,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
             cullSides(e.brushes, map.planes);
             clipSidesIntoTree(e.brushes, tree, map.planes);
             addFaceSurfaces(e, faces, params, surfaces);
-            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces,
+            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs, options.renameModelShaders, options.classify.maxSurfaceVerts}, surfaces,
                              log);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);

@@ -1,8 +1,9 @@
 // misc_model entities baked into a model's surfaces (q3map2 model.cpp AddTriangleModels,
 // InsertModel): every misc_model whose target names the entity (none for the world) has its model
 // loaded through the VFS, moved by its origin (less the parent's), angles and scale, its shaders
-// remapped by _remap keys, and each model surface becomes a triangle surface. MD3 models are read;
-// other formats and autoclip are refused with a warning naming the entity.
+// remapped by a _skin file and _remap keys, and each model surface becomes a triangle surface. Every
+// format of libs/model is read; autoclip and forced meta are refused with a warning naming the
+// entity, as is a missing or broken model file.
 #pragma once
 
 #include <vector>
@@ -18,23 +19,13 @@ class Vfs;
 
 namespace q3::bspstage {
 
-struct ModelTransform {
-    double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};  // rotation * scale, then translation
-
-    Vec3 point(const Vec3& p) const;
-    Vec3 direction(const Vec3& d) const;  // by the inverse transpose, for normals (not normalised)
-    bool leftHanded() const;
-};
-
-// Origin, then yaw (Z), pitch (Y) and roll (X) in degrees, then scale (q3map2's euler xyz order).
-ModelTransform modelTransform(const DVec3& origin, double pitch, double yaw, double roll, const DVec3& scale);
-
 struct ModelInputs {
     const map::MapFile& file;
     const ShaderTable& shaders;
     const Vfs* vfs;  // nullptr: no model can be loaded (each one is warned about)
     // -rename (SoF2): shader names get _BSP, or _RMG_BSP with spawnflag 1, in place of an extension.
     bool renameShaders = false;
+    int maxSurfaceVerts = 999;  // imported meshes are split above this many vertices (-mv may raise it)
 };
 
 // Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity).
