@@ -38,6 +38,7 @@ struct ModelContext {
     std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
     LibcRandom& random;  // -maxarea retries, drawn in surface order
     Log& log;
+    int mapSurfacesBefore = 0;  // draw surfaces of the models already written (q3map2 numbers them on)
 };
 
 // The steps both kinds of model share once their faces exist: tessellation, classification,
@@ -106,7 +107,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
                 triangulateFace(ds, &triangles);
             classifySurface(ds, c.in.map.planes, c.options.classify);
         }
-        c.builder.emitSurface(ds, c.options.emit);
+        c.builder.emitSurface(ds, c.options.emit, c.mapSurfacesBefore + int(i));
         references += refs;
         ++emitted;
         c.written.push_back(std::make_unique<DrawSurface>(ds));
@@ -118,6 +119,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     if (c.options.maxArea) c.log.debug(countLine(triangles.maxArea, "maxarea'd face surfaces"));
     c.builder.fixBrushSides(surfaces);
     c.builder.endModel(tree);
+    c.mapSurfacesBefore += int(surfaces.size());
 }
 
 }  // namespace

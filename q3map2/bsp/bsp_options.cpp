@@ -91,7 +91,8 @@ cli::OptionTable<O> buildTable() {
     t.push_back(flag<O>({"-skyfix"}, &O::skyFix,
                         "Add shader-only surfaces for the six sky box images (GL_CLAMP border workaround)",
                         kImplemented));
-    t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
+    t.push_back(flag<O>({"-debugsurfaces"}, &O::debugSurfaces,
+                        "Colour the vertices of each surface by its number (shader debugsurfaces)", kImplemented));
     t.push_back(flag<O>({"-debuginset"}, &O::debugInset, "Push triangle vertices one unit to the triangle centre",
                         kImplemented));
     t.push_back(flag<O>({"-debugportals"}, &O::debugPortals,

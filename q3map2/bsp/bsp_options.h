@@ -41,6 +41,7 @@ struct BspOptions {
     bool autocaulk = false;      // -autocaulk
     bool debugPortals = false;   // -debugportals
     bool debugInset = false;     // -debuginset
+    bool debugSurfaces = false;  // -debugsurfaces
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -76,22 +76,12 @@ TEST_P(MiscModelReference, SampleModelSurfacesEqualQ3map2s) {
 }
 
 TEST_P(MiscModelReference, OacmpDm1TorchesEqualQ3map2s) {
-    fs::path mapSource;
-    for (const fs::path& p : q3::test::oacmpMapSources())
-        if (p.stem() == "oacmpdm1") mapSource = p;
-    ASSERT_FALSE(mapSource.empty()) << "oacmpdm1.map not found";
+    const fs::path mapSource = oacmpSource("oacmpdm1");
+    ASSERT_FALSE(mapSource.empty());
     const fs::path refDir = referenceCompile(reference(), mapSource, {}, false);
     const fs::path work = q3::test::tempDir() / ("misc-models-dm1-" + std::to_string(::getpid()));
-    fs::create_directories(work / "maps");
-    fs::copy_file(mapSource, work / "maps/oacmpdm1.map");
-    CommonOptions common;
-    common.basePaths.push_back(q3::test::openArenaBase().string());
-    common.baseGame = "baseoa";
-    common.mapPath = work / "maps/oacmpdm1.bsp";
-    common.commandLine = "-bsp";
-    Log log(false);
-    runBspStage(BspOptions{}, common, log);
-    expectSameTriangleSurfaces(common.mapPath, refDir / "oacmpdm1.bsp", 26);
+    const fs::path ourBsp = ourCompile(mapSource, work);
+    expectSameTriangleSurfaces(ourBsp, refDir / "oacmpdm1.bsp", 26);
     fs::remove_all(work);
 }
 
