@@ -51,6 +51,14 @@ ModelTransform ModelTransform::place(const Vec3& origin, float pitch, float yaw,
     return t;
 }
 
+ModelTransform ModelTransform::skybox(const Vec3& origin, float pitch, float yaw, float roll, const Vec3& scale) {
+    ModelTransform t = place({0, 0, 0}, pitch, yaw, roll, scale);
+    // The translation to -origin comes last: it passes through the turn and scale, in floats.
+    for (int row = 0; row < 3; ++row)
+        t.m_[12 + row] = -origin.x * t.m_[row] + -origin.y * t.m_[4 + row] + -origin.z * t.m_[8 + row] + t.m_[12 + row];
+    return t;
+}
+
 Vec3 ModelTransform::point(const Vec3& p) const {
     return {p.x * m_[0] + p.y * m_[4] + p.z * m_[8] + m_[12], p.x * m_[1] + p.y * m_[5] + p.z * m_[9] + m_[13],
             p.x * m_[2] + p.y * m_[6] + p.z * m_[10] + m_[14]};

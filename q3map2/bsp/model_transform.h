@@ -15,6 +15,8 @@ public:
 
     // Translation, then rotations about X (roll), Y (pitch), Z (yaw) in degrees, then scale.
     static ModelTransform place(const Vec3& origin, float pitch, float yaw, float roll, const Vec3& scale);
+    // A _skybox room into the sky: moved from `origin` to the world origin, then turned and scaled.
+    static ModelTransform skybox(const Vec3& origin, float pitch, float yaw, float roll, const Vec3& scale);
 
     Vec3 point(const Vec3& p) const;
     Vec3 normal(const Vec3& n) const;  // by the inverse transpose, not normalised

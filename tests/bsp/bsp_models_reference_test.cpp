@@ -61,17 +61,9 @@ class MiscModelReference : public conformance::ReferenceTest<int> {};
 TEST_P(MiscModelReference, SampleModelSurfacesEqualQ3map2s) {
     const fs::path work = q3::test::tempDir() / ("misc-models-" + std::to_string(::getpid()));
     const fs::path ours = compileSample("misc_models", work / "ours") / "misc_models.bsp";
-    const fs::path theirs = work / "ref";
-    fs::create_directories(theirs);
-    fs::copy(samplesRoot() / "samples", theirs / "samples", fs::copy_options::recursive);
-    std::string output;
-    const int status = q3::test::runCommand(
-        q3::test::shellQuote(reference()) + " -threads 1 -game quake3 -fs_basepath " + q3::test::shellQuote(theirs) +
-            " -fs_basegame samples -bsp " + q3::test::shellQuote(theirs / "samples/maps/misc_models.map"),
-        &output);
-    ASSERT_EQ(status, 0) << output;
+    const fs::path theirs = referenceSampleCompile(reference(), "misc_models", work / "ref");
     // 13 surfaces: the missing model gives none, the skin keeps the post's one surface.
-    expectSameTriangleSurfaces(ours, theirs / "samples/maps/misc_models.bsp", 13);
+    expectSameTriangleSurfaces(ours, theirs / "misc_models.bsp", 13);
     fs::remove_all(work);
 }
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bsp_samples.h"
 #include "bsp_stage.h"
 #include "conformance_pipeline.h"
 #include "file_io.h"
@@ -72,6 +73,18 @@ fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOp
     Log log(false);
     runBspStage(options, common, log);
     return common.mapPath;
+}
+
+fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
+    fs::remove_all(work);
+    fs::create_directories(work);
+    fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
+    std::string output;
+    const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
+                                      " -fs_basegame samples -bsp " + shellQuote(work / "samples/maps" / (name + ".map")),
+                                  &output);
+    EXPECT_EQ(status, 0) << output;
+    return work / "samples/maps";
 }
 
 fs::path oacmpSource(const std::string& name) {
