@@ -153,6 +153,8 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     std::vector<int> brushOutputs(map.entities.size(), -1);
     LibcRandom random;
     ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
+    const ModelInputs modelInputs{in.file, in.shaders, in.vfs, options.renameModelShaders,
+                                  options.classify.maxSurfaceVerts, options.clip};
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];
@@ -181,7 +183,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 log.debug(countLine(culled.coincident, "coincident faces culled"));
                 addFaceSurfaces(e, faces, params, surfaces);
             }
-            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs, options.renameModelShaders, options.classify.maxSurfaceVerts}, surfaces, log);
+            std::vector<Brush> clip;
+            addModelSurfaces(e, true, map, modelInputs, surfaces, clip, log);
+            prependClipBrushes(e, std::move(clip), surfaces, out.world.tree);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
@@ -199,8 +203,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
             cullSides(e.brushes, map.planes);
             clipSidesIntoTree(e.brushes, tree, map.planes);
             addFaceSurfaces(e, faces, params, surfaces);
-            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs, options.renameModelShaders, options.classify.maxSurfaceVerts}, surfaces,
-                             log);
+            std::vector<Brush> clip;
+            addModelSurfaces(e, false, map, modelInputs, surfaces, clip, log);
+            prependClipBrushes(e, std::move(clip), surfaces, tree);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             finishModel(c, i, surfaces, tree);

@@ -42,6 +42,8 @@ struct BspOptions {
     bool debugPortals = false;   // -debugportals
     bool debugInset = false;     // -debuginset
     bool debugSurfaces = false;  // -debugsurfaces
+    bool debugClip = false;      // -debugclip
+    float clipDepth = 2;         // -clipdepth
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

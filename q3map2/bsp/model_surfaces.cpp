@@ -8,6 +8,7 @@
 
 #include "log.h"
 #include "model.h"
+#include "model_clip.h"
 #include "model_transform.h"
 #include "script.h"
 #include "shader_info.h"
@@ -17,7 +18,6 @@ namespace q3::bspstage {
 namespace {
 
 constexpr int kRandomMapGenerator = 1;  // SoF2's RMG_BSP spawnflag: the -rename suffix
-constexpr int kClipFlags = 2 | 8 | 16 | 128 | 256 | 512 | 1024 | 2048 | 4096;  // autoclip spawnflags
 constexpr int kForceMeta = 4;
 constexpr int kColorToAlpha = 32;  // the vertex colour's grey goes to alpha, colour becomes white
 
@@ -162,7 +162,7 @@ void setColor(bsp::DrawVert& dv, const float (&color)[4], bool colorToAlpha) {
 }  // namespace
 
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
-                      std::vector<DrawSurface>& out, Log& log) {
+                      std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log) {
     const std::string targetName =
         isWorld ? std::string() : parent.source->value("_targetname", parent.source->value("targetname"));
     if (!isWorld && targetName.empty()) return;
@@ -177,11 +177,14 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             continue;
         }
         const int spawnFlags = std::atoi(e.value("spawnflags").c_str());
-        if (spawnFlags & (kClipFlags | kForceMeta)) {
+        if (spawnFlags & kForceMeta) {
             log.warning(label(e) + ": spawnflags " + std::to_string(spawnFlags) +
-                        " (autoclip or forced meta) are not supported by this build; model skipped");
+                        " (forced meta) are not supported by this build; model skipped");
             continue;
         }
+        float clipDepth = inputs.clip.clipDepth;
+        if (const std::string* d = e.find("_clipdepth")) clipDepth = float(std::atof(d->c_str()));
+        bool refusedClip = false;
         const int frame = std::atoi(e.value("_frame", e.value("frame")).c_str());
         const std::vector<model::Surface>* surfaces = cache.get(*modelName, frame, inputs, label(e), log);
         if (!surfaces) continue;
@@ -238,6 +241,19 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             ds.indexes = surface.indexes;
             if (transform.leftHanded())
                 for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i + 1], ds.indexes[i + 2]);
+            if (wantsDefaultClip(spawnFlags, shader)) {
+                const ShaderInfo* debugShaders[2] = {nullptr, nullptr};
+                if (inputs.clip.debugClip)
+                    debugShaders[0] = &inputs.shaders.find("debugclip2"), debugShaders[1] = &inputs.shaders.find("debugclip");
+                ClipBrushes clip = clipBrushesForSurface(ds, shader, parent.mapEntityNum, clipDepth, inputs.clip,
+                                                         inputs.clip.debugClip ? &debugShaders : nullptr, *modelName, map.planes);
+                for (const std::string& w : clip.warnings) log.warning(w);
+                for (Brush& b : clip.brushes) clipBrushes.push_back(std::move(b));
+            } else if ((spawnFlags & kAutoclipFlags) && !refusedClip) {
+                log.warning(label(e) + ": autoclip spawnflags " + std::to_string(spawnFlags & kAutoclipFlags) +
+                            " other than 2 alone are not supported by this build; the model gets no clip brushes");
+                refusedClip = true;
+            }
             out.push_back(std::move(ds));
         }
     }

@@ -2,7 +2,8 @@
 // InsertModel): every misc_model whose target names the entity (none for the world) has its model
 // loaded through the VFS, moved by its origin (less the parent's), angles and scale, its shaders
 // remapped by a _skin file and _remap keys, and each model surface becomes a triangle surface. Every
-// format of libs/model is read; autoclip and forced meta are refused with a warning naming the
+// format of libs/model is read; spawnflag 2 (or a q3map_clipModel shader) makes clip brushes
+// (model_clip.h); the other autoclip modes and forced meta are refused with a warning naming the
 // entity, as is a missing or broken model file.
 #pragma once
 
@@ -10,6 +11,7 @@
 
 #include "bsp_brushes.h"
 #include "draw_surface.h"
+#include "model_clip.h"
 
 namespace q3 {
 class Log;
@@ -26,11 +28,13 @@ struct ModelInputs {
     // -rename (SoF2): shader names get _BSP, or _RMG_BSP with spawnflag 1, in place of an extension.
     bool renameShaders = false;
     int maxSurfaceVerts = 999;  // imported meshes are split above this many vertices (-mv may raise it)
+    ClipOptions clip;
 };
 
-// Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity).
-// Shaders without a script are recorded in `map` under the spelling the model gives them.
+// Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity), and
+// their clip brushes in the order made (see prependClipBrushes). Shaders without a script are
+// recorded in `map` under the spelling the model gives them.
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
-                      std::vector<DrawSurface>& out, Log& log);
+                      std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log);
 
 }  // namespace q3::bspstage

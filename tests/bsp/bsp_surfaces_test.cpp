@@ -283,8 +283,9 @@ TEST(ModelSurfaces, RenameAppendsBspOrRmgBspToTheShaderName) {
         "test.map");
     LoadedMap map = loadMapForBsp(file, shaders, {}, log);
     std::vector<DrawSurface> plain, renamed;
-    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs}, plain, log);
-    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs, true}, renamed, log);
+    std::vector<Brush> clip;
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs}, plain, clip, log);
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs, true}, renamed, clip, log);
     std::filesystem::remove_all(root);
     ASSERT_EQ(plain.size(), 2u);
     ASSERT_EQ(renamed.size(), 2u);
