@@ -22,6 +22,12 @@ def entities(bsp_path, prog):
     return [dict(re.findall(r'"([^"]*)"\s+"([^"]*)"', block)) for block in re.findall(r"\{([^{}]*)\}", text)]
 
 
+def plain(value):
+    """A number as q3-screenshot reads it: no exponent ("-7e-06" would be refused), no needless zeros."""
+    text = ("%.4f" % value).rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
 def viewpoints(bsp_path, count, prog):
     """The first `count` spawn points (all of them for None), in q3-screenshot's -P form
     ("X Y Z YAW"), 9 units up as the game spawns a player."""
@@ -30,7 +36,7 @@ def viewpoints(bsp_path, count, prog):
         if e.get("classname") not in SPAWNS or "origin" not in e:
             continue
         x, y, z = (float(v) for v in e["origin"].split()[:3])
-        views.append("%g %g %g %g" % (x, y, z + 9, float(e.get("angle", "0"))))
+        views.append(" ".join(plain(v) for v in (x, y, z + 9, float(e.get("angle", "0")))))
         if len(views) == count:
             break
     return views
