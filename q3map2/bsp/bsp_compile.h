@@ -10,6 +10,7 @@
 #include "face_surfaces.h"
 #include "flares.h"
 #include "surface_classify.h"
+#include "model_clip.h"
 #include "world_structure.h"
 
 namespace q3 {
@@ -37,6 +38,7 @@ struct BspCompileOptions {
     bool debugPortals = false;  // -debugportals: a face for every passable portal of the world tree
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
+    ClipOptions clip;               // -clipdepth, -debugclip, -snap for misc_model clip brushes
 };
 
 struct CompiledBsp {

@@ -68,6 +68,8 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.classify.maxSurfaceVerts = std::max(999, o.maxLightmappedVerts);
     c.emit.maxLightmappedVerts = o.maxLightmappedVerts;
     c.emit.debugInset = o.debugInset;
+    c.emit.debugSurfaces = o.debugSurfaces;
+    c.clip = {o.clipDepth, o.debugClip, o.bevelSnap};
     c.brushSnap = !o.noBrushSnap;
     c.fog = !o.noFog;
     c.subdivide = !o.noSubdivide;

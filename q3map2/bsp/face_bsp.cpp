@@ -63,21 +63,31 @@ Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, Plane
     }
     int bestValue = -99999;
     const BspFace* best = nullptr;
+    // q3map2 scores every face, but the counts depend on its plane alone: each plane is counted once.
+    struct Counts {
+        int facing = 0, splits = 0, front = 0, back = 0;
+    };
+    std::unordered_map<int, Counts> counted;
+    counted.reserve(faces.size());
     for (const BspFace& split : faces) {
         const MapPlane& plane = planes[split.planeNum];
-        int facing = 0, splits = 0, front = 0, back = 0;
-        for (const BspFace& check : faces) {
-            if (check.planeNum == split.planeNum) {
-                ++facing;
-                continue;
-            }
-            switch (windingOnPlaneSide(check.winding, plane.plane)) {
-            case PlaneSide::Cross: ++splits; break;
-            case PlaneSide::Front: ++front; break;
-            case PlaneSide::Back: ++back; break;
-            case PlaneSide::On: break;
+        auto [at, added] = counted.try_emplace(split.planeNum);
+        Counts& c = at->second;
+        if (added) {
+            for (const BspFace& check : faces) {
+                if (check.planeNum == split.planeNum) {
+                    ++c.facing;
+                    continue;
+                }
+                switch (windingOnPlaneSide(check.winding, plane.plane)) {
+                case PlaneSide::Cross: ++c.splits; break;
+                case PlaneSide::Front: ++c.front; break;
+                case PlaneSide::Back: ++c.back; break;
+                case PlaneSide::On: break;
+                }
             }
         }
+        const int facing = c.facing, splits = c.splits, front = c.front, back = c.back;
         int value;
         if (scoring.alternate) {
             // Balanced, large, rarely used planes first.

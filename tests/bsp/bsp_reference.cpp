@@ -6,6 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "bsp_samples.h"
+#include "bsp_stage.h"
 #include "conformance_pipeline.h"
 #include "file_io.h"
 #include "log.h"
@@ -54,6 +58,40 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     fs::rename(work / "keep", final, ec);  // another process may have put its copy there first
     fs::remove_all(work);
     return final;
+}
+
+fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options) {
+    fs::remove_all(work);
+    fs::create_directories(work / "maps");
+    const fs::path map = work / "maps" / mapSource.filename();
+    fs::copy_file(mapSource, map);
+    CommonOptions common;
+    common.basePaths.push_back(openArenaBase().string());
+    common.baseGame = "baseoa";
+    common.mapPath = fs::path(map).replace_extension(".bsp");
+    common.commandLine = "-bsp";
+    Log log(false);
+    runBspStage(options, common, log);
+    return common.mapPath;
+}
+
+fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
+    fs::remove_all(work);
+    fs::create_directories(work);
+    fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
+    std::string output;
+    const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
+                                      " -fs_basegame samples -bsp " + shellQuote(work / "samples/maps" / (name + ".map")),
+                                  &output);
+    EXPECT_EQ(status, 0) << output;
+    return work / "samples/maps";
+}
+
+fs::path oacmpSource(const std::string& name) {
+    for (const fs::path& p : oacmpMapSources())
+        if (p.stem() == name) return p;
+    ADD_FAILURE() << name << ".map is not among the oacmp sources";
+    return {};
 }
 
 const ShaderTable& openArenaShaders() {

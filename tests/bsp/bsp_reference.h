@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "bsp_options.h"
 #include "shader_info.h"
 
 namespace q3::bspstage::test {
@@ -14,6 +15,19 @@ namespace q3::bspstage::test {
 // Throws when it fails.
 std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
                                        const std::string& extraOptions = {}, bool meta = true);
+
+// Our plain -bsp of `mapSource` (with `options`) in a scratch `work`/maps/ folder, over the OpenArena
+// data; returns the .bsp path.
+std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const std::filesystem::path& work,
+                                 const BspOptions& options = {});
+
+// The reference's plain -bsp of the sample `name` (bsp-samples) in `work`/samples/maps/, uncached
+// (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
+std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
+                                             const std::filesystem::path& work);
+
+// The .map source of an oacmp map by name ("oacmpdm7"); fails the test when it is missing.
+std::filesystem::path oacmpSource(const std::string& name);
 
 // Every shader of the OpenArena data (loaded once).
 const ShaderTable& openArenaShaders();

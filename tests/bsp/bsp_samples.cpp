@@ -27,7 +27,7 @@ std::vector<std::string> sampleOutputExtensions(const fs::path& dir, const std::
     return out;
 }
 
-fs::path compileSample(const std::string& name, const fs::path& work) {
+fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
@@ -36,8 +36,8 @@ fs::path compileSample(const std::string& name, const fs::path& work) {
     common.baseGame = "samples";
     common.mapPath = work / "samples" / "maps" / (name + ".bsp");
     common.commandLine = "-bsp";
-    Log log(false);
-    runBspStage(BspOptions{}, common, log);
+    Log quiet(false);
+    runBspStage(BspOptions{}, common, log ? *log : quiet);
     return work / "samples" / "maps";
 }
 
