@@ -208,15 +208,22 @@ TEST(ShTrace, AreaLightPiecesShareTheLegacyShadowRay) {
 
 // One probe's lights with their rays traced as one batch give what they give one by one: the
 // blocked light drops out, styled light stays out, the others add in light order.
-TEST(ShTrace, BatchedLightsEqualOneByOne) {
-    std::vector<SceneSurface> plate{test::quad({-4, -4, 20}, {8, 0, 0}, {0, 8, 0})};
-    TraceScene blocked(plate, {});
-    LightingEnv env;
-    env.scene = &blocked;
+// Two point lights, a yellow emitter and a styled light over a small plate at z = 20.
+struct PlateAndLights {
+    TraceScene blocked{{test::quad({-4, -4, 20}, {8, 0, 0}, {0, 8, 0})}, {}};
     std::vector<Light> lights{pointLight({0, 0, 0}, 300, {1, 0, 0}), pointLight({90, 10, 60}, 200, {0, 1, 0}),
                               squareEmitter(), pointLight({-50, 30, 80}, 250, {0, 0, 1})};
-    lights[2].color = {1, 1, 0};
-    lights[3].style = 1;
+    PlateAndLights() {
+        lights[2].color = {1, 1, 0};
+        lights[3].style = 1;
+    }
+};
+
+TEST(ShTrace, BatchedLightsEqualOneByOne) {
+    PlateAndLights setup;
+    LightingEnv env;
+    env.scene = &setup.blocked;
+    const std::vector<Light>& lights = setup.lights;
     const Vec3 point{0, 0, 40};  // the plate hides the first light and the emitter's centre
     sh::SH9Color oneByOne, batched;
     int reached = 0;
@@ -230,6 +237,32 @@ TEST(ShTrace, BatchedLightsEqualOneByOne) {
     EXPECT_GT(batched.c[0][1], 0.0);
     EXPECT_EQ(batched.c[0][0], 0.0);
     EXPECT_EQ(batched.c[0][2], 0.0);
+}
+
+// A block of probes traced together, with envelopes given and one light marked clear of solid,
+// gives every probe what it gets alone.
+TEST(ShTrace, BlockOfProbesEqualsEachProbeAlone) {
+    PlateAndLights setup;
+    LightingEnv env;
+    env.scene = &setup.blocked;
+    const std::vector<Light>& lights = setup.lights;
+    const std::vector<uint32_t> all{0, 1, 2, 3};
+    const std::vector<uint8_t> clear{0, 1, 0, 0};
+    const std::vector<float> envelopes = lightEnvelopes(lights, env.settings.forceFast);
+    const std::vector<Vec3> origins{{0, 0, 40}, {30, -20, 35}, {-10, 5, 60}, {2, 2, 25}};
+    const std::vector<int> clusters(origins.size(), -1);
+    std::vector<sh::SH9Color> block(origins.size());
+    addLightsToGridPointsSH(block, lights, all, clear, envelopes, origins, clusters, env);
+    int lit = 0;
+    for (size_t p = 0; p < origins.size(); ++p) {
+        sh::SH9Color alone;
+        addLightsToGridPointSH(alone, lights, all, origins[p], -1, env);
+        for (int k = 0; k < sh::kCoeffCount; ++k)
+            for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(block[p].c[k][ch], alone.c[k][ch]) << p << " " << k << " " << ch;
+        lit += alone.c[0][0] + alone.c[0][1] + alone.c[0][2] > 0 ? 1 : 0;
+    }
+    EXPECT_GE(lit, 2);
+    EXPECT_NE(block[0].c[0][0], block[1].c[0][0]);  // the probes do not all see the same lights
 }
 
 struct SkyScene {

@@ -102,8 +102,17 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
 
 void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, std::span<const uint32_t> candidates,
                             Vec3 origin, int cluster, const LightingEnv& env) {
+    addLightsToGridPointsSH(std::span<sh::SH9Color>(&acc, 1), lights, candidates, {}, {}, std::span<const Vec3>(&origin, 1),
+                            std::span<const int>(&cluster, 1), env);
+}
+
+void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                             std::span<const float> envelopes, std::span<const Vec3> origins,
+                             std::span<const int> clusters, const LightingEnv& env) {
     struct Pending {
         uint32_t light;
+        uint32_t point;
         LightContribution contribution;
         int ray;  // index into rays, -1 = unoccluded
     };
@@ -114,22 +123,32 @@ void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, st
     pending.clear();
     LightingEnv deferred = env;
     deferred.deferredRays = env.scene ? &rays : nullptr;
-    for (uint32_t lightIndex : candidates) {
+    LightingEnv deferredClear = deferred;
+    deferredClear.clearOfSolid = true;
+    const size_t np = origins.size();
+    for (size_t k = 0; k < candidates.size(); ++k) {
+        const uint32_t lightIndex = candidates[k];
         const Light& light = lights[lightIndex];
         if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
-        const size_t before = rays.size();
-        std::optional<LightContribution> c = lightToGridPoint(light, origin, cluster, deferred);
-        if (c) pending.push_back({lightIndex, *c, rays.size() > before ? int(before) : -1});
+        const float envelope = envelopes.empty() ? lightEnvelope(light, env.settings.forceFast) : envelopes[lightIndex];
+        const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
+        for (size_t p = 0; p < np; ++p) {
+            const size_t before = rays.size();
+            std::optional<LightContribution> c = lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelope);
+            if (c) pending.push_back({lightIndex, uint32_t(p), *c, rays.size() > before ? int(before) : -1});
+        }
     }
     transmissions.assign(rays.size(), Vec3{1, 1, 1});
-    // One stream per probe, flagged incoherent: the rays spread from the probe towards every light
+    // One stream per block, flagged incoherent: the rays spread from the probes towards every light
     // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
     if (env.scene && !rays.empty()) env.scene->traceBatch(rays, transmissions, false);
-    for (Pending& p : pending) {
+    // Each probe adds its lights up in light order (pending holds them light by light).
+    for (const Pending& p : pending) {
         const Vec3 transmission = p.ray >= 0 ? transmissions[size_t(p.ray)] : Vec3{1, 1, 1};
         if (transmission == Vec3{}) continue;
-        p.contribution.color *= transmission;
-        projectContribution(acc, lights[p.light], origin, p.contribution, transmission, env.settings, false);
+        LightContribution c = p.contribution;
+        c.color *= transmission;
+        projectContribution(accs[p.point], lights[p.light], origins[p.point], c, transmission, env.settings, false);
     }
 }
 
@@ -231,38 +250,68 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     std::vector<Vec3> origins(numPoints);
     log.info(strCat("SH light grid: ", numPoints, " points"));
     Progress progress = Progress::forConsole(log, numPoints);
-    auto lightPoint = [&](size_t i, Vec3 lattice, const BlockLights& reaching) {
-        const std::span<const uint32_t> candidates = reaching.candidates;
-        const std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, offsets);
+    // Where a point is lit: its lattice position or the nearest free nudge; false when in solid.
+    auto place = [&](size_t i, Vec3 lattice) -> std::optional<PlacedGridPoint> {
+        std::optional<PlacedGridPoint> placed = placeGridPoint(ctx.tree.get(), lattice, offsets);
         if (!placed) {
             solid[i] = 1;
-            return;
+            return placed;
         }
         nudged[i] = placed->nudged ? 1 : 0;
-        const Vec3 origin = placed->origin;
-        const int cluster = placed->cluster;
-        origins[i] = origin;
-        sh::SH9Color acc;
-        if (ctx.options.cheapGrid) {
-            // -cheapgrid stops once the point is white, so each light's ray is traced before the next.
+        origins[i] = placed->origin;
+        return placed;
+    };
+    auto store = [&](size_t i, sh::SH9Color& acc) {
+        applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
+        grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));
+    };
+    const GridLattice lattice{layout.bounds, layout.mins, layout.size};
+    if (ctx.options.cheapGrid) {
+        // -cheapgrid stops once the point is white, so each light's ray is traced before the next.
+        auto lightPoint = [&](size_t i, Vec3 latticePoint, const BlockLights& reaching) {
+            const std::optional<PlacedGridPoint> placed = place(i, latticePoint);
+            if (!placed) return;
+            sh::SH9Color acc;
             Vec3 total = ctx.world.ambient;
-            for (uint32_t lightIndex : candidates) {
+            for (uint32_t lightIndex : reaching.candidates) {
                 const Light& light = ctx.lights[lightIndex];
                 if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
-                std::optional<LightContribution> c = addLightToGridPointSH(acc, light, origin, cluster, env);
+                std::optional<LightContribution> c = addLightToGridPointSH(acc, light, placed->origin, placed->cluster, env);
                 if (!c) continue;
                 total += c->color;
                 if (total.x >= 255 && total.y >= 255 && total.z >= 255) break;
             }
-        } else {
-            addLightsToGridPointSH(acc, ctx.lights, candidates, origin, cluster, env);
-        }
-        applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
-        grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));
-    };
-    // Nudged points move at most nudgeRadius from their lattice position.
-    lightGridByBlocks(GridLattice{layout.bounds, layout.mins, layout.size}, ctx.lights, nudgeRadius + 1.0f,
-                      env.settings, kBlockEdge, ctx.threads, progress, lightPoint);
+            store(i, acc);
+        };
+        // Nudged points move at most nudgeRadius from their lattice position.
+        lightGridByBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,
+                          lightPoint);
+    } else {
+        // Block by block: the shadow rays of all the block's probes go to the scene as one stream,
+        // and lights whose rays from the whole block meet no structural solid skip the tree walk.
+        const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
+        auto lightBlock = [&](std::span<const GridBlockPoint> blockPoints, const BlockLights& reaching) {
+            thread_local std::vector<size_t> index;
+            thread_local std::vector<Vec3> at;
+            thread_local std::vector<int> clusters;
+            thread_local std::vector<sh::SH9Color> accs;
+            index.clear();
+            at.clear();
+            clusters.clear();
+            for (const GridBlockPoint& p : blockPoints)
+                if (const std::optional<PlacedGridPoint> placed = place(p.index, p.origin)) {
+                    index.push_back(p.index);
+                    at.push_back(placed->origin);
+                    clusters.push_back(placed->cluster);
+                }
+            accs.assign(index.size(), sh::SH9Color{});
+            addLightsToGridPointsSH(accs, ctx.lights, reaching.candidates, reaching.clearOfSolid, envelopes, at,
+                                    clusters, env);
+            for (size_t k = 0; k < index.size(); ++k) store(index[k], accs[k]);
+        };
+        lightGridBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,
+                        lightBlock, useTree ? ctx.tree.get() : nullptr);
+    }
     progress.finish();
 
     ShTraceStats stats;

@@ -87,6 +87,14 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
 // rays traced as one batch.
 void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, std::span<const uint32_t> candidates,
                             Vec3 origin, int cluster, const LightingEnv& env);
+// The same for several free points (`origins`, `clusters`, one accumulator each), the shadow rays
+// of all of them traced as one batch; each point still adds its lights in light order.
+// `clearOfSolid[k]`, when given, says that candidate k's rays from every point meet no structural
+// solid; `envelopes`, when given, holds lightEnvelope of every light.
+void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                             std::span<const float> envelopes, std::span<const Vec3> origins,
+                             std::span<const int> clusters, const LightingEnv& env);
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
 // adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform
