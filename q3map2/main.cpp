@@ -1,5 +1,6 @@
 // The q3map2 executable: parses the command line, applies the common options and runs one stage.
 // Exit codes: 0 success, 1 compile failure ("ERROR: <message>"), 2 usage error.
+#include "bsp_stage.h"
 #include "command_line.h"
 #include "feedback_log.h"
 #include "run_stats.h"
@@ -35,7 +36,10 @@ using q3::cli::UsageError;
 std::vector<q3::cli::StageDescription> stageList() {
     std::vector<q3::cli::StageDescription> stages = q3::cli::q3map2Stages();
     for (q3::cli::StageDescription& s : stages) {
-        if (s.name == "-info") {
+        if (s.name == "-bsp") {
+            s.available = true;
+            s.options = q3::cli::describe(q3::bspstage::bspOptionTable());
+        } else if (s.name == "-info") {
             s.available = true;
             s.options = q3::cli::describe(q3::info::infoOptionTable());
         } else if (s.name == "-vis") {
@@ -148,6 +152,10 @@ int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
              const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
              q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image) {
     // Each stage checks all of its options before any work starts.
+    if (line.stage == "-bsp") {
+        auto options = parseStageOptions(q3::bspstage::bspOptionTable(), line, stages);
+        return q3::bspstage::runBspStage(options, common, log);
+    }
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);
         return q3::info::runInfoStage(options, common, log);

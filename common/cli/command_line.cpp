@@ -57,9 +57,10 @@ std::filesystem::path bspPathFor(const std::string& mapArg) {
     std::filesystem::path path(mapArg);
     std::string extension = lowered(path.extension().string());
     if (extension == ".bsp") return path;
-    if (extension == ".map") return std::filesystem::path(path).replace_extension(".bsp");
+    if (extension == ".map" || extension == ".reg" || extension == ".ent")
+        return std::filesystem::path(path).replace_extension(".bsp");
     if (extension.empty()) return std::filesystem::path(mapArg + ".bsp");
-    throw UsageError("map file '" + mapArg + "' must end in .bsp or .map (or have no extension)");
+    throw UsageError("map file '" + mapArg + "' must end in .bsp, .map, .reg or .ent (or have no extension)");
 }
 
 CommandLine splitCommandLine(std::span<const std::string> args, const OptionTable<CommonOptions>& commonTable,
@@ -77,6 +78,36 @@ CommandLine splitCommandLine(std::span<const std::string> args, const OptionTabl
     size_t pos = 0;
     while (pos < args.size() && !findStage(stages, args[pos])) ++pos;
     ParseContext before{"", commonInfos, stageNames(stages)};
+    // Without a stage switch q3map2 compiles the map (-bsp): every common option is taken out, the
+    // other arguments before the map file are -bsp's.
+    const StageDescription* bsp = findStage(stages, "-bsp");
+    if (pos == args.size() && bsp && bsp->available && !args.empty() && !args.back().empty() && args.back()[0] != '-') {
+        line.stage = bsp->name;
+        line.mapArg = args.back();
+        std::vector<std::string> moved;
+        for (size_t i = 0; i + 1 < args.size(); ++i) {
+            const int option = findOption(commonInfos, args[i]);
+            if (option < 0) {
+                // A mistyped stage switch is likelier than a mistyped -bsp option: name the stage.
+                if (args[i][0] == '-' && findOption(bsp->options, args[i]) < 0) {
+                    const std::string suggestion = closestName(args[i], stageNames(stages));
+                    if (!suggestion.empty())
+                        throw UsageError("unknown option '" + args[i] + "'; did you mean '" + suggestion + "'?");
+                }
+                line.stageArgs.push_back(args[i]);
+                continue;
+            }
+            moved.push_back(args[i]);
+            for (size_t v = 0; v < commonInfos[size_t(option)].args.size() && i + 2 < args.size(); ++v)
+                moved.push_back(args[++i]);
+        }
+        parseOptions(commonTable, moved, before, common);
+        common.mapPath = bspPathFor(line.mapArg);
+        common.mapArgument = line.mapArg;
+        common.commandLine = bsp->name;
+        for (const std::string& a : line.stageArgs) common.commandLine += " " + a;
+        return line;
+    }
     if (pos == args.size()) {
         // A mistyped stage switch shows up as an unknown option; name it rather than the missing stage.
         std::span<const std::string> leading = args;
@@ -110,6 +141,7 @@ CommandLine splitCommandLine(std::span<const std::string> args, const OptionTabl
     if (!moved.empty()) parseOptions(commonTable, moved, before, common);
 
     common.mapPath = bspPathFor(line.mapArg);
+    common.mapArgument = line.mapArg;
     common.commandLine = stage.name;
     for (const std::string& a : line.stageArgs) common.commandLine += " " + a;
     return line;

@@ -51,9 +51,8 @@ OptionTable<CommonOptions> buildCommonTable() {
                              "Sets extra game directory name to additionally load mod's resources from at higher "
                              "priority",
                              kImplemented, "gamename", "none"));
-    t.push_back(custom<O>({"-fs_basegame"}, {{ArgKind::Text, "gamename", {}}}, 1, "per game",
-                          "Overrides default game directory name", kImplemented,
-                          [](O& o, std::span<const ArgValue> v) { o.baseGame = v[0].text; }));
+    t.push_back(textValue<O>({"-fs_basegame"}, &O::baseGame, "Overrides default game directory name", kImplemented,
+                             "gamename", "per game"));
     t.push_back(custom<O>({"-fs_home"}, {{ArgKind::Text, "dir", {}}}, 1, "$HOME",
                           "Specifies where the user home directory is on Linux", kNotImplemented,
                           [](O&, std::span<const ArgValue>) {}));
@@ -69,8 +68,8 @@ OptionTable<CommonOptions> buildCommonTable() {
     t.push_back(custom<O>({"-game"}, {{ArgKind::Text, "gamename", {}}}, 1, CommonOptions{}.game,
                           "Load settings for the given game (quake3 or quakelive)", kImplemented, setGame));
     t.push_back(custom<O>({"-maxmapdrawsurfs"}, {{ArgKind::Int, "N", Range::atLeast(1)}}, 1, "131072",
-                          "Sets max amount of mapDrawSurfs, used during .map compilation", kNotImplemented,
-                          [](O&, std::span<const ArgValue>) {}));
+                          "Sets max amount of mapDrawSurfs, used during .map compilation", kImplemented,
+                          [](O& o, std::span<const ArgValue> v) { o.maxMapDrawSurfs = static_cast<int>(v[0].number); }));
     t.push_back(custom<O>({"-subdivisions"}, {{ArgKind::Float, "F", Range::positive()}}, 1, "1",
                           "Multiplier for patch subdivisions quality", kNotImplemented,
                           [](O&, std::span<const ArgValue>) {}));

@@ -18,6 +18,13 @@ std::vector<std::string> ShaderInfo::lightImageCandidates() const {
     return out;
 }
 
+std::vector<std::string> ShaderInfo::textureImageCandidates() const {
+    std::vector<std::string> out;
+    for (const std::string* path : {&editorImage, &name, &implicitImage, &lightImage})
+        if (!path->empty()) out.push_back(*path);
+    return out;
+}
+
 ShaderInfo makeImplicitShader(std::string_view textureName) {
     ShaderInfo shader;
     std::string key = shaderKey(textureName);

@@ -65,6 +65,7 @@ inline constexpr uint32_t LightFilter = 0x8000;
 inline constexpr uint32_t AlphaShadow = 0x10000;
 inline constexpr uint32_t NoDLight = 0x20000;
 inline constexpr uint32_t Dust = 0x40000;
+inline constexpr uint32_t NoOb = 0x80000;  // quake3 game profile: bots' obstacle marker off
 inline constexpr uint32_t VertexLit = PointLight | NoLightmap;
 }  // namespace surfaceflags
 
@@ -87,6 +88,7 @@ inline constexpr uint32_t AreaPortal = 0x2000;
 inline constexpr uint32_t AntiPortal = 0x4000;
 inline constexpr uint32_t Skip = 0x8000;
 inline constexpr uint32_t NoMarks = 0x10000;
+inline constexpr uint32_t Ob = 0x20000;  // surfaceparm ob: exempt from -noob
 inline constexpr uint32_t Detail = 0x8000000;
 }  // namespace compileflags
 
@@ -199,6 +201,27 @@ struct ShaderInfo {
     // q3map_deprecateShader: look-ups of this shader continue with that one.
     std::string deprecatedBy;
 
+    // What -bsp reads besides the flags: how brush faces are textured, cut and fogged.
+    float tessSize = 0;                 // tessSize / q3map_tessSize: faces cut on this grid; 0 = never
+    bool fogParms = false;              // fogParms: brushes of this shader are fog volumes
+    std::optional<Vec3> fogDir;         // q3map_fogDir: the fog's visible side faces against it
+    bool globalTexture = false;         // q3map_globalTexture: no texture shift reduction or bias
+    bool noClip = false;                // q3map_noClip: faces keep their whole winding
+    bool noTJunc = false;               // q3map_notjunc
+    bool noFog = false;                 // q3map_noFog
+    bool polygonOffset = false;         // polygonOffset: never culled as hidden
+    bool autosprite2 = false;           // deformVertexes autosprite2
+    bool invert = false;                // q3map_invert: faces flipped
+    float vertexOffset = 0;             // q3map_offset: vertices pushed along their normal
+    int textureWidth = 0;               // q3map_textureSize; 0 = the image's size
+    int textureHeight = 0;
+    std::string implicitImage;          // implicitMap / implicitMask / implicitBlend image
+    bool tcGen = false;                 // q3map_tcGen vector / ivector: st = (dot(s, p), dot(t, p))
+    Vec3 tcGenVectors[2];
+    std::string flareShader;            // q3map_flare / q3map_flareShader: flares of this surface (-flares)
+    std::string backShader;             // q3map_backShader: a flipped copy with this shader
+    std::string cloneShader;            // q3map_cloneShader: a copy with this shader
+
     bool isSky() const { return (compileFlags & compileflags::Sky) != 0; }
     bool isTranslucent() const { return (compileFlags & compileflags::Translucent) != 0; }
     bool isNoDraw() const { return (compileFlags & compileflags::NoDraw) != 0; }
@@ -207,6 +230,9 @@ struct ShaderInfo {
     bool isLightFilter() const { return (compileFlags & compileflags::LightFilter) != 0; }
     bool isFog() const { return (compileFlags & compileflags::Fog) != 0; }
 
+    // Images whose size scales brush face texture coordinates, in q3map2's order: editor image,
+    // the shader name, the implicit image, the light image (the first that loads wins).
+    std::vector<std::string> textureImageCandidates() const;
     // Images to try, in order, for the light colour and alpha/filter look-ups (q3map2's
     // LoadShaderImages): lightImage, then the editor image, then the shader name itself; the first
     // one that loads is the light image. Empty for nodraw shaders (q3map2 uses its white default).

@@ -12,18 +12,14 @@
 namespace q3 {
 namespace {
 
-// q3map_* directives q3map2 understands that change nothing the lighting sees. They are
+// q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 30> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel", "q3map_foliage",     "q3map_flare",         "q3map_flareShader",
-    "q3map_backShader",   "q3map_cloneShader", "q3map_remapShader",
-    "q3map_offset",       "q3map_fur",         "q3map_textureSize",   "q3map_tcGen",
-    "q3map_colorGen",     "q3map_colorMod",    "q3map_rgbGen",        "q3map_rgbMod",
-    "q3map_alphaGen",     "q3map_alphaMod",    "q3map_tcMod",         "q3map_fogDir",
-    "q3map_globalTexture", "q3map_noClip",     "q3map_notjunc",       "q3map_noFog",
-    "q3map_indexed",      "q3map_invert",      "q3map_patchShadows",  "q3map_vertexShadows",
-    "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
+constexpr std::array<std::string_view, 17> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel", "q3map_foliage",     "q3map_remapShader",
+    "q3map_fur",          "q3map_colorGen",    "q3map_colorMod",     "q3map_rgbGen",        "q3map_rgbMod",
+    "q3map_alphaGen",     "q3map_alphaMod",    "q3map_tcMod",        "q3map_indexed",       "q3map_patchShadows",
+    "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
 };
 
 bool isIgnoredQ3mapDirective(std::string_view token) {
@@ -183,6 +179,7 @@ private:
             if (startsWithNoCase(kind, "autosprite")) {
                 // Autosprites become point lights and are detail, as in q3map2.
                 shader.autosprite = true;
+                if (equalsNoCase(kind, "autosprite2")) shader.autosprite2 = true;
                 applyParm(shader, "detail");
             }
         } else if (is("qer_editorImage")) {
@@ -201,11 +198,20 @@ private:
             argToken(shader, token);  // inner box
         } else if (is("sun") || is("q3map_sun") || is("q3map_sunExt")) {
             parseSun(shader, token, is("q3map_sunExt"));
+        } else if (is("tessSize")) {
+            shader.tessSize = argFloat(shader, token);
+        } else if (is("fogParms")) {
+            shader.fogParms = true;
+        } else if (is("polygonOffset")) {
+            shader.polygonOffset = true;
+        } else if (is("implicitMap") || is("implicitMask") || is("implicitBlend")) {
+            std::string image = argToken(shader, token);
+            shader.implicitImage = image == "-" ? shader.name : image;
         } else if (startsWithNoCase(token, "q3map_")) {
             parseQ3mapDirective(shader, token);
         }
-        // Anything else (stage-independent engine directives, editor keys, "light", "tessSize",
-        // "fogParms", ...) does not affect lighting.
+        // Anything else (stage-independent engine directives, editor keys, "light", ...) matters to
+        // neither -bsp nor -light.
     }
 
     void parseSun(ShaderInfo& shader, const std::string& token, bool extended) {
@@ -328,11 +334,58 @@ private:
             shader.styleMarker = 1;
         } else if (is("q3map_styleMarker2")) {
             shader.styleMarker = 2;
+        } else if (is("q3map_tessSize")) {
+            shader.tessSize = argFloat(shader, token);
+        } else if (is("q3map_fogDir")) {
+            shader.fogDir = argVec3(shader, token);
+        } else if (is("q3map_globalTexture")) {
+            shader.globalTexture = true;
+        } else if (is("q3map_noClip")) {
+            shader.noClip = true;
+        } else if (is("q3map_notjunc")) {
+            shader.noTJunc = true;
+        } else if (is("q3map_noFog")) {
+            shader.noFog = true;
+        } else if (is("q3map_invert")) {
+            shader.invert = true;
+        } else if (is("q3map_offset")) {
+            shader.vertexOffset = argFloat(shader, token);
+        } else if (is("q3map_textureSize")) {
+            shader.textureWidth = argInt(shader, token);
+            shader.textureHeight = argInt(shader, token);
+        } else if (is("q3map_flare") || is("q3map_flareShader")) {
+            shader.flareShader = argToken(shader, token);
+        } else if (is("q3map_backShader")) {
+            shader.backShader = argToken(shader, token);
+        } else if (is("q3map_cloneShader")) {
+            shader.cloneShader = argToken(shader, token);
+        } else if (is("q3map_tcGen")) {
+            parseTcGen(shader, token);
         } else if (isIgnoredQ3mapDirective(token)) {
             // Not lighting related.
         } else if (!applySurfaceParm(std::string_view(token).substr(6), shader)) {
             log_.warning(where() + ": shader '" + shader.name + "': unknown directive '" + token + "'");
         }
+    }
+
+    // q3map_tcGen vector ( sx sy sz ) ( tx ty tz ), or ivector with the reciprocals of each part.
+    void parseTcGen(ShaderInfo& shader, const std::string& token) {
+        const std::string method = argToken(shader, token);
+        const bool inverse = equalsNoCase(method, "ivector");
+        if (!inverse && !equalsNoCase(method, "vector")) {
+            log_.warning(where() + ": shader '" + shader.name + "': unknown q3map_tcGen method '" + method + "'");
+            shader.tcGen = true;
+            shader.tcGenVectors[0] = shader.tcGenVectors[1] = Vec3{0, 0, 0};
+            return;
+        }
+        for (Vec3& v : shader.tcGenVectors) {
+            if (argToken(shader, token) != "(") script_.fail("q3map_tcGen in shader '" + shader.name + "': expected '('");
+            v = argVec3(shader, token);
+            if (argToken(shader, token) != ")") script_.fail("q3map_tcGen in shader '" + shader.name + "': expected ')'");
+            if (inverse)
+                for (float* c : {&v.x, &v.y, &v.z}) *c = *c != 0 ? 1.0f / *c : 0.0f;
+        }
+        shader.tcGen = true;
     }
 
     // q3map_baseShader: start over from a copy of another shader (earlier in this file, else in the

@@ -52,6 +52,8 @@ constexpr std::array kSurfaceParms = {
     SurfaceParm{"nosteps", 0, 0, s::NoSteps, 0, 0, 0},
     SurfaceParm{"nodlight", 0, 0, s::NoDLight, 0, 0, 0},
     SurfaceParm{"dust", 0, 0, s::Dust, 0, 0, 0},
+    SurfaceParm{"noob", 0, 0, s::NoOb, 0, 0, 0},
+    SurfaceParm{"ob", 0, 0, 0, 0, k::Ob, 0},
 };
 
 }  // namespace

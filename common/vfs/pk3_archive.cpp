@@ -2,11 +2,13 @@
 #include "pk3_archive.h"
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
 
 #include <unzip.h>
 
 #include "file_io.h"
+#include "mapped_file.h"
 #include "vfs.h"
 
 namespace q3 {
@@ -18,18 +20,72 @@ struct ZipCloser {
 };
 using ZipHandle = std::unique_ptr<void, ZipCloser>;
 
-ZipHandle openZip(const std::filesystem::path& path) { return ZipHandle(unzOpen64(path.string().c_str())); }
+// minizip's file functions over a memory map: each opened stream is a cursor into the mapped bytes.
+struct MapCursor {
+    std::span<const uint8_t> bytes;
+    uint64_t position = 0;
+};
+
+voidpf ZCALLBACK openCursor(voidpf opaque, const void*, int mode) {
+    if ((mode & ZLIB_FILEFUNC_MODE_READWRITEFILTER) != ZLIB_FILEFUNC_MODE_READ) return nullptr;
+    return new MapCursor{static_cast<const MappedFile*>(opaque)->bytes(), 0};
+}
+
+uLong ZCALLBACK readCursor(voidpf, voidpf stream, void* buffer, uLong size) {
+    auto* cursor = static_cast<MapCursor*>(stream);
+    const uint64_t available = cursor->position < cursor->bytes.size() ? cursor->bytes.size() - cursor->position : 0;
+    const uLong count = static_cast<uLong>(std::min<uint64_t>(size, available));
+    if (count > 0) std::memcpy(buffer, cursor->bytes.data() + cursor->position, count);
+    cursor->position += count;
+    return count;
+}
+
+uLong ZCALLBACK writeCursor(voidpf, voidpf, const void*, uLong) { return 0; }
+
+ZPOS64_T ZCALLBACK tellCursor(voidpf, voidpf stream) { return static_cast<MapCursor*>(stream)->position; }
+
+long ZCALLBACK seekCursor(voidpf, voidpf stream, ZPOS64_T offset, int origin) {
+    auto* cursor = static_cast<MapCursor*>(stream);
+    uint64_t base = 0;
+    if (origin == ZLIB_FILEFUNC_SEEK_CUR) base = cursor->position;
+    else if (origin == ZLIB_FILEFUNC_SEEK_END) base = cursor->bytes.size();
+    else if (origin != ZLIB_FILEFUNC_SEEK_SET) return -1;
+    if (offset > cursor->bytes.size() - std::min<uint64_t>(base, cursor->bytes.size())) return -1;
+    cursor->position = base + offset;
+    return 0;
+}
+
+int ZCALLBACK closeCursor(voidpf, voidpf stream) {
+    delete static_cast<MapCursor*>(stream);
+    return 0;
+}
+
+int ZCALLBACK cursorError(voidpf, voidpf) { return 0; }
+
+ZipHandle openZip(const MappedFile& file, const std::filesystem::path& path) {
+    zlib_filefunc64_def functions{openCursor, readCursor,  writeCursor, tellCursor,
+                                  seekCursor, closeCursor, cursorError, const_cast<MappedFile*>(&file)};
+    return ZipHandle(unzOpen2_64(path.string().c_str(), &functions));
+}
 
 }  // namespace
 
 std::optional<Pk3Archive> Pk3Archive::open(const std::filesystem::path& path, std::string& error) {
-    ZipHandle zip = openZip(path);
+    std::shared_ptr<const MappedFile> file;
+    try {
+        file = MappedFile::open(path);
+    } catch (const FileError&) {
+        error = "not a readable file";
+        return std::nullopt;
+    }
+    ZipHandle zip = openZip(*file, path);
     if (!zip) {
         error = "not a readable zip archive (corrupt or truncated)";
         return std::nullopt;
     }
     Pk3Archive archive;
     archive.path_ = path;
+    archive.file_ = file;
     int status = unzGoToFirstFile(zip.get());
     while (status == UNZ_OK) {
         unz_file_info64 info{};
@@ -65,7 +121,7 @@ std::vector<uint8_t> Pk3Archive::read(const Entry& entry) const {
     auto fail = [&](const std::string& what) -> FileError {
         return FileError(path_.string() + ": cannot read " + entry.name + ": " + what);
     };
-    ZipHandle zip = openZip(path_);
+    ZipHandle zip = openZip(*file_, path_);
     if (!zip) throw fail("archive can no longer be opened");
     unz64_file_pos position{entry.directoryOffset, entry.fileNumber};
     if (unzGoToFilePos64(zip.get(), &position) != UNZ_OK) throw fail("entry not found");

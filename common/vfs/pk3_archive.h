@@ -1,16 +1,19 @@
-// One .pk3 (zip) archive: its table of contents, read once, and entry extraction. Each read opens
-// its own zip handle, so a Pk3Archive is immutable after construction and safe to share between
-// threads.
+// One .pk3 (zip) archive: its table of contents, read once, and entry extraction. The archive is
+// memory-mapped and minizip reads it through that map; each read opens its own zip handle on the
+// map, so a Pk3Archive is immutable after construction and safe to share between threads.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace q3 {
+
+class MappedFile;
 
 class Pk3Archive {
 public:
@@ -34,6 +37,7 @@ public:
 
 private:
     std::filesystem::path path_;
+    std::shared_ptr<const MappedFile> file_;
     std::unordered_map<std::string, Entry> entries_;
 };
 

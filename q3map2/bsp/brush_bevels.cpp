@@ -11,7 +11,7 @@ namespace {
 // Surface flags a bevel inherits from the sides it touches (footstep and damage behaviour).
 constexpr uint32_t kBevelSurfaceFlagsMask = surfaceflags::NoDamage | surfaceflags::Slick | surfaceflags::Flesh |
                                             surfaceflags::MetalSteps | surfaceflags::NoSteps | surfaceflags::Dust |
-                                            0x80000;  // noob (quake3 game profile)
+                                            surfaceflags::NoOb;
 constexpr double kBevelEpsilon = 0.1;
 
 bool planesEqual(const MapPlane& p, const DPlane& plane, const PlaneEpsilons& eps) {
@@ -28,7 +28,7 @@ bool isAxialDirection(const DVec3& v) {
     return false;
 }
 
-int addAxialBevels(Brush& brush, PlaneSet& planes) {
+int addAxialBevels(Brush& brush, PlaneSet& planes, int snap) {
     int added = 0;
     int order = 0;
     for (int axis = 0; axis < 3; ++axis) {
@@ -39,6 +39,12 @@ int addAxialBevels(Brush& brush, PlaneSet& planes) {
             if (i == brush.sides.size()) {
                 DPlane plane{DVec3::axis(axis, dir), dir == 1 ? brush.bounds.maxs[axis] : -brush.bounds.mins[axis]};
                 plane.dist = double(float(plane.dist));
+                if (snap > 0) {
+                    // -snap: the bevel moves inwards to a multiple of N (fewer distinct planes).
+                    const float n = float(snap);
+                    plane.dist = dir == 1 ? double(std::floor(float(brush.bounds.maxs[axis]) / n) * n)
+                                          : double(-(std::ceil(float(brush.bounds.mins[axis]) / n) * n));
+                }
                 BrushSide bevel;
                 bevel.planeNum = planes.find(plane);
                 bevel.contentFlags = brush.sides[0].contentFlags;
@@ -132,8 +138,8 @@ int addEdgeBevels(Brush& brush, PlaneSet& planes) {
 
 }  // namespace
 
-std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes) {
-    const int box = addAxialBevels(brush, planes);
+std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes, int bevelSnap) {
+    const int box = addAxialBevels(brush, planes, bevelSnap);
     const int edge = addEdgeBevels(brush, planes);
     return {box, edge};
 }

@@ -1,9 +1,11 @@
 #include "bsp_brushes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string_view>
 
 #include "log.h"
+#include "model_numbers.h"
 #include "script.h"
 #include "shader_info.h"
 
@@ -82,8 +84,9 @@ Brush brushFromMap(const map::MapBrush& source, int mapEntityNum, const ShaderTa
         side.exactPlane = {normal, dot(p0, normal)};
         const ShaderInfo& shader = lookUpShader(face.texture, shaders, out);
         side.shader = &shader;
+        side.face = &face;
         side.contentFlags = shader.contentFlags;
-        side.surfaceFlags = shader.surfaceFlags;
+        side.surfaceFlags = out.flagRules.surfaceFlags(shader);
         side.compileFlags = shader.compileFlags;
         // Of the three legacy numbers only the detail bit of the first still means something.
         if (face.hasFlags && (uint32_t(face.contentFlags) & compileflags::Detail)) side.compileFlags |= compileflags::Detail;
@@ -97,7 +100,9 @@ void offsetBrushes(std::vector<Brush>& brushes, const DVec3& offset, PlaneSet& p
     for (Brush& b : brushes) {
         for (BrushSide& side : b.sides) {
             const MapPlane& p = planes[side.planeNum];
-            side.planeNum = planes.find({p.normal(), p.dist() - dot(p.normal(), offset)});
+            // In 32-bit floats, as q3map2's plane distance of the origin is.
+            const float moved = float(p.dist()) - dot(p.normal().toFloat(), offset.toFloat());
+            side.planeNum = planes.find({p.normal(), double(moved)});
             if (side.exactPlane.normal != DVec3{}) side.exactPlane.dist -= dot(side.exactPlane.normal, offset);
         }
         createBrushWindings(b, planes);
@@ -136,7 +141,9 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
         weldShortEdges(w);
         side.winding.clear();
         if (w.size() >= 3)
-            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p));
+            // + 0.0 turns -0 into 0: q3map2 builds windings around the brush centre and moves
+            // them back, so an axial coordinate of 0 comes out positive.
+            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p + DVec3{0.0, 0.0, 0.0}));
     }
     brush.bounds = DBounds{};
     for (const BrushSide& side : brush.sides)
@@ -181,7 +188,7 @@ void setBrushContents(Brush& b, bool fullDetail, Log& log) {
 }
 
 LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, const MapLoadOptions& options, Log& log) {
-    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}};
+    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}, {}, options.flagRules};
     for (const map::MapEntity& source : map.entities) {
         BspEntity ent;
         ent.source = &source;
@@ -189,16 +196,16 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         ent.classname = std::string(source.classname());
         if (equalsNoCase(ent.classname, "group_info")) continue;
         const bool isWorld = out.entities.empty();
-        const bool isGroup = !isWorld && equalsNoCase(ent.classname, "func_group");
+        const bool isGroup = !isWorld && !options.keepGroups && equalsNoCase(ent.classname, "func_group");
         ent.origin = parseVectorKey(source.value("origin"));
         if (!options.noCurves)
-            for (const map::MapPatch& p : source.patches) ent.patches.push_back(&p);
+            for (const map::MapPatch& p : source.patches) ent.patches.push_back({&p, source.number});
         // Shaders are looked up in file order (brushes and patches interleaved): the first
         // spelling of a shader without a script names it.
         size_t nextPatch = 0;
         auto lookUpPatchShadersBefore = [&](int primitiveNum) {
-            for (; nextPatch < ent.patches.size() && ent.patches[nextPatch]->primitiveNum < primitiveNum; ++nextPatch)
-                lookUpShader(ent.patches[nextPatch]->texture, shaders, out);
+            for (; nextPatch < ent.patches.size() && ent.patches[nextPatch].patch->primitiveNum < primitiveNum; ++nextPatch)
+                lookUpShader(ent.patches[nextPatch].patch->texture, shaders, out);
         };
 
         bool haveOriginBrush = false;
@@ -230,18 +237,23 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
                 continue;
             }
             if (b.compileFlags & compileflags::AreaPortal) keepLargestAreaportalSide(b, log);
-            auto [box, edge] = addBrushBevels(b, out.planes);
-            out.counts.boxBevels += box;
-            out.counts.edgeBevels += edge;
+            if (!options.keepGroups) {
+                auto [box, edge] = addBrushBevels(b, out.planes, options.bevelSnap);
+                out.counts.boxBevels += box;
+                out.counts.edgeBevels += edge;
+            }
             if (b.compileFlags & compileflags::AreaPortal) ++out.counts.areaportals;
             (b.opaque ? opaque : translucent).push_back(std::move(b));
         }
         lookUpPatchShadersBefore(source.primitiveCount());
+        // q3map2 links each patch in front of the entity's list.
+        std::reverse(ent.patches.begin(), ent.patches.end());
         for (auto it = opaque.rbegin(); it != opaque.rend(); ++it) ent.brushes.push_back(std::move(*it));
         for (Brush& b : translucent) ent.brushes.push_back(std::move(b));
 
         if (haveOriginBrush) {
             ent.hasOriginBrush = true;
+            ent.originBrushCenter = originBrushCenter;
             ent.origin = ent.origin + originBrushCenter;
             offsetBrushes(ent.brushes, originBrushCenter, out.planes);
         }
@@ -260,7 +272,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
             }
             world.insert(world.begin(), std::make_move_iterator(head.begin()), std::make_move_iterator(head.end()));
             // q3map2 prepends the group's patches to the world's.
-            std::vector<const map::MapPatch*>& worldPatches = out.entities.front().patches;
+            std::vector<PatchRef>& worldPatches = out.entities.front().patches;
             worldPatches.insert(worldPatches.begin(), ent.patches.begin(), ent.patches.end());
             continue;
         }
@@ -273,6 +285,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         if (b.detail) ++out.counts.detailBrushes;
         out.worldBounds.add(b.bounds);
     }
+    numberModels(out, options.resolveClones, log);
     for (const BspEntity& e : out.entities) out.counts.patches += int(e.patches.size());
     return out;
 }

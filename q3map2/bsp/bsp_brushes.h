@@ -11,6 +11,7 @@
 #include "dvec3.h"
 #include "map_file.h"
 #include "plane_set.h"
+#include "shader_flag_rules.h"
 #include "winding.h"
 
 namespace q3 {
@@ -29,6 +30,8 @@ struct BrushSide {
     uint32_t surfaceFlags = 0;
     uint32_t compileFlags = 0;
     bool bevel = false;
+    bool culled = false;  // hidden inside another brush or behind a coincident face (cullSides)
+    const map::BrushFace* face = nullptr;  // the .map face (texture projection); nullptr for bevels
     Winding winding;      // empty for bevels and sides clipped away
     Winding visibleHull;  // the part of the winding in open leaves (set by clipSidesIntoTree)
 };
@@ -45,16 +48,25 @@ struct Brush {
     DBounds bounds;
 };
 
+// A patch and the .map entity it was written in (func_group patches join the world).
+struct PatchRef {
+    const map::MapPatch* patch = nullptr;
+    int mapEntityNum = 0;
+};
+
 struct BspEntity {
     const map::MapEntity* source = nullptr;
     int mapEntityNum = 0;
     std::string classname;
     // q3map2's order: opaque brushes first (latest first), then translucent ones in file order.
     std::vector<Brush> brushes;
-    // Patches (parsed, not yet tessellated), func_group ones moved here; none with -nocurves.
-    std::vector<const map::MapPatch*> patches;
+    // Patches (parsed, not yet tessellated), func_group ones moved here; none with -nocurves. In
+    // q3map2's order: each entity's latest first, func_groups' ahead of the world's.
+    std::vector<PatchRef> patches;
     DVec3 origin;  // "origin" key (0 0 0 when absent), moved by an origin brush
     bool hasOriginBrush = false;
+    DVec3 originBrushCenter;  // brushes were moved by minus this; textures stay where the map put them
+    std::string model;  // the "model" key it is written with ("*3"), empty for none (numberModels)
 
     // Point entities start the flood that finds the map's inside.
     bool isPointEntity() const;
@@ -67,6 +79,12 @@ struct MapLoadOptions {
     bool noWater = false;     // -nowater
     bool noHint = false;      // -nohint
     bool noCurves = false;    // -nocurves
+    ShaderFlagRules flagRules;  // -noob, -globalflag
+    int bevelSnap = 0;          // -snap
+    // -autocaulk (q3map2's noCollapseGroups): func_groups stay entities of their own, so that the
+    // world's brush numbers are the editor's, and brushes get no bevels.
+    bool keepGroups = false;
+    bool resolveClones = true;  // off for -onlyents, which numbers clones like other models
 };
 
 struct MapLoadCounts {
@@ -86,6 +104,7 @@ struct LoadedMap {
     // Shaders without a script are named as the map first spelled them (q3map2 keeps that
     // spelling; the shader table keys them in lower case).
     std::map<const ShaderInfo*, std::string> implicitShaderNames;
+    ShaderFlagRules flagRules;
 
     // The name a shader is written under.
     const std::string& shaderName(const ShaderInfo& shader) const;
@@ -99,8 +118,9 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes);
 // Sets the brush's content/compile flags, content shader, detail and opaque from its sides.
 void setBrushContents(Brush& brush, bool fullDetail, Log& log);
 // Puts the six axial planes first (adding bevel sides where missing), then adds edge bevels.
-// Returns the number of (box, edge) bevels added.
-std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes);
+// Returns the number of (box, edge) bevels added. bevelSnap > 0 (-snap) moves added axial bevels
+// inwards to multiples of it.
+std::pair<int, int> addBrushBevels(Brush& brush, PlaneSet& planes, int bevelSnap = 0);
 
 // "x y z" as q3map2 reads vectors from keys (missing numbers are 0).
 DVec3 parseVectorKey(const std::string& text);

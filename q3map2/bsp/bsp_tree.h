@@ -27,6 +27,7 @@ struct TreeNode {
     int firstPortal = -1;        // head of this node's portal list
     int tinyPortals = 0;
     std::vector<int> brushes;    // brushes (entity list indices) with a fragment in this leaf
+    std::vector<int> drawSurfaces;  // BSP surfaces drawn in this leaf, in the order they were added
 
     bool isLeaf() const { return planeNum == kLeafPlane; }
 };

@@ -12,9 +12,6 @@ bool isTrue(const bsp::Entity& e, std::string_view key) {
     return v && std::atoi(v->c_str()) != 0;
 }
 
-// Brush entities and entities with patches become models, numbered in entity order.
-bool isModel(const BspEntity& e) { return !e.brushes.empty() || !e.patches.empty(); }
-
 std::string formatOrigin(const DVec3& o) {
     char text[128];
     std::snprintf(text, sizeof text, "%f %f %f", float(o.x), float(o.y), float(o.z));
@@ -37,7 +34,6 @@ std::string commandLineValue(const std::string& previous, const std::vector<std:
 
 std::vector<bsp::Entity> bspEntities(const LoadedMap& map, const EntityLumpOptions& options) {
     std::vector<bsp::Entity> out;
-    int model = 1;
     bool keepLights = options.keepLights, keepModels = options.keepModels;
     for (size_t i = 0; i < map.entities.size(); ++i) {
         const BspEntity& e = map.entities[i];
@@ -45,15 +41,17 @@ std::vector<bsp::Entity> bspEntities(const LoadedMap& map, const EntityLumpOptio
         for (const auto& [key, value] : e.source->pairs)
             if (!key.empty() && !value.empty()) entity.pairs.emplace_back(key, value);
         if (i == 0) {
-            entity.set("_q3map2_cmdline", commandLineValue(entity.value("_q3map2_cmdline"), options.stageArgs));
-            entity.set("_q3map2_version", options.version);
+            if (options.recordCommandLine) {
+                entity.set("_q3map2_cmdline", commandLineValue(entity.value("_q3map2_cmdline"), options.stageArgs));
+                entity.set("_q3map2_version", options.version);
+            }
             if (options.keepLights) entity.set("_keepLights", "1");
             if (options.keepModels) entity.set("_keepModels", "1");
             keepLights = isTrue(entity, "_keepLights");
             keepModels = isTrue(entity, "_keepModels");
         } else {
             if (e.hasOriginBrush) entity.set("origin", formatOrigin(e.origin));
-            if (isModel(e)) entity.set("model", "*" + std::to_string(model++));
+            if (!e.model.empty()) entity.set("model", e.model);
         }
         const std::string_view classname = entity.classname();
         if (i > 0 && !keepLights && classname.size() >= 5 && equalsNoCase(classname.substr(0, 5), "light")) continue;

@@ -17,6 +17,7 @@ struct EntityLumpOptions {
     std::string version = "2.5.17n";     // _q3map2_version
     bool keepLights = false;             // -keeplights (also sets worldspawn _keepLights)
     bool keepModels = false;             // -keepmodels (also sets worldspawn _keepModels)
+    bool recordCommandLine = true;       // false for -onlyents: no _q3map2_cmdline / _q3map2_version
 };
 
 // q3map2's _q3map2_cmdline value: the previous value, "; ", then "-bsp" and each argument with

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "brush_filter.h"
+#include "count_line.h"
 #include "file_io.h"
 #include "log.h"
 #include "script.h"
@@ -12,11 +13,6 @@
 namespace q3::bspstage {
 namespace {
 
-std::string counted(int value, const char* what) {
-    char line[96];
-    std::snprintf(line, sizeof line, "%9d %s", value, what);
-    return line;
-}
 
 bool keyIsTrue(const map::MapEntity& e, std::string_view a, std::string_view b) {
     const std::string* v = e.find(a);
@@ -29,21 +25,21 @@ Tree buildTreePass(std::vector<BspFace> faces, LoadedMap& map, const BlockSize& 
                    TreePassCounts& counts, Log& log) {
     log.debug("--- FaceBSP ---");
     Tree tree = buildFaceTree(std::move(faces), map.planes, blockSize, alternateSplit, &counts.faceBsp);
-    log.debug(counted(counts.faceBsp.faces, "faces"));
-    log.debug(counted(counts.faceBsp.leafs, "leafs"));
+    log.debug(countLine(counts.faceBsp.faces, "faces"));
+    log.debug(countLine(counts.faceBsp.leafs, "leafs"));
     log.debug("--- MakeTreePortals ---");
     counts.portals = makeTreePortals(tree, map.planes);
-    log.debug(counted(counts.portals.tinyPortals, "tiny portals"));
+    log.debug(countLine(counts.portals.tinyPortals, "tiny portals"));
     log.debug("--- FilterStructuralBrushesIntoTree ---");
     counts.structuralReferences = filterStructuralBrushesIntoTree(map.entities.front().brushes, tree, map.planes);
-    log.debug(counted(counts.structuralReferences, "cluster references"));
+    log.debug(countLine(counts.structuralReferences, "cluster references"));
     return tree;
 }
 
 FloodResult floodPass(Tree& tree, LoadedMap& map, TreePassCounts& counts, Log& log) {
     log.debug("--- FloodEntities ---");
     const FloodResult result = floodEntities(tree, map.entities, map.planes, log, &counts.flood);
-    log.debug(counted(counts.flood.floodedLeafs, "flooded leafs"));
+    log.debug(countLine(counts.flood.floodedLeafs, "flooded leafs"));
     // Verbose only, as in q3map2: the leak banner and the line file say it for everyone.
     if (result == FloodResult::Empty) log.debug("no entities in open -- no filling");
     if (result == FloodResult::Leaked) log.debug("entity reached from outside -- leak detected");
@@ -53,9 +49,9 @@ FloodResult floodPass(Tree& tree, LoadedMap& map, TreePassCounts& counts, Log& l
 void fillPass(Tree& tree, TreePassCounts& counts, Log& log) {
     log.debug("--- FillOutside ---");
     counts.fill = fillOutside(tree);
-    log.debug(counted(counts.fill.solid, "solid leafs"));
-    log.info(counted(counts.fill.filled, "leafs filled"));
-    log.debug(counted(counts.fill.inside, "inside leafs"));
+    log.debug(countLine(counts.fill.solid, "solid leafs"));
+    log.info(countLine(counts.fill.filled, "leafs filled"));
+    log.debug(countLine(counts.fill.inside, "inside leafs"));
 }
 
 }  // namespace
@@ -118,13 +114,13 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
 
     log.debug("--- NumberClusters ---");
     out.clusters = numberClusters(tree);
-    log.debug(counted(out.clusters.clusters, "visclusters"));
-    log.debug(counted(out.clusters.portals, "visportals"));
-    log.debug(counted(out.clusters.solidFaces, "solidfaces"));
+    log.debug(countLine(out.clusters.clusters, "visclusters"));
+    log.debug(countLine(out.clusters.portals, "visportals"));
+    log.debug(countLine(out.clusters.solidFaces, "solidfaces"));
     if (!out.leaked) out.portalFile = portalFileText(tree, out.clusters);
     log.debug("--- FloodAreas ---");
     out.areas = floodAreas(tree);
-    log.debug(counted(out.areas, "areas"));
+    log.debug(countLine(out.areas, "areas"));
     out.tree = std::move(tree);
     return out;
 }

@@ -56,6 +56,7 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
     if (!common.fsGame.empty()) vfsOptions.gameDirs.push_back(common.fsGame);
     vfsOptions.baseGame = common.baseGame;
     if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
+    vfsOptions.baseGame = common.baseGame;
     vfsOptions.mapPath = ctx.bspPath;
     ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
     ctx.shaderTable = std::make_unique<ShaderTable>(loadShaderTable(*ctx.vfs, log));

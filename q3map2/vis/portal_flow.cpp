@@ -1,6 +1,8 @@
 #include "portal_flow.h"
 
+#include "cluster_knowledge.h"
 #include "cluster_vis.h"
+#include "flow_beam.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -30,12 +32,7 @@ struct FlowLevel {
     const Winding* pass = nullptr;  // nullptr at the base portal
     Winding sourceBuffer;
     std::array<Winding, 2> passBuffers;
-    // The separators between the previous level's source and pass, one per edge at most, found
-    // edge by edge as candidates need them and kept for the level's other candidates: a
-    // candidate clipped away early never pays for the rest.
-    std::array<std::array<Plane, kMaxSeparators>, 2> separators;
-    std::array<std::array<bool, kMaxSeparators>, 2> separatorFound;
-    std::array<int, 2> edgesDone{};
+    Beam beam;  // between source and pass, once the walk arrives at this level
 };
 
 // A portal of a cluster as the walk first looks at it, packed per cluster so that rejecting a
@@ -49,10 +46,12 @@ struct LeafExit {
 struct FlowShared {
     const VisGraph& graph;
     const std::vector<std::vector<LeafExit>>& exits;  // per cluster, removed portals left out
+    const std::vector<Box>& clusterBounds;
     const BitMatrix& floodClusters;  // per portal: the clusters of its base flood
     const Passages* passages;
     FlowMode mode;
     BitMatrix& clusterVis;           // per portal: the clusters it sees (the result)
+    const ClusterKnowledge& known;   // what earlier waves found
     const std::vector<int>& waveOf;  // per portal
 };
 
@@ -71,7 +70,19 @@ public:
 
     void run() {
         FlowLevel& head = level(0);
-        std::copy_n(s_.floodClusters.row(static_cast<size_t>(baseIndex_)), words_, head.mightSee.begin());
+        const uint64_t* flood = s_.floodClusters.row(static_cast<size_t>(baseIndex_));
+        // What earlier waves found about the base's cluster: the clusters known hidden from it
+        // are not looked for, those known visible are marked from the start (the cluster's row
+        // gets them either way).
+        std::copy_n(flood, words_, head.mightSee.begin());
+        if (const int home = s_.known.home(baseIndex_); home >= 0) {
+            const uint64_t* possible = s_.known.possible(home);
+            const uint64_t* seen = s_.known.seen(home);
+            for (size_t w = 0; w < words_; ++w) {
+                head.mightSee[w] &= possible[w];
+                vis_[w] |= flood[w] & seen[w];
+            }
+        }
         head.first = 0;
         head.last = words_;
         head.source = &base_.winding;
@@ -87,50 +98,76 @@ private:
         return *scratch_.levels[depth];
     }
 
-    // Finished results of earlier waves prune harder than the base flood.
-    const uint64_t* mask(int portal) const {
-        const size_t p = static_cast<size_t>(portal);
-        return s_.waveOf[p] < currentWave_ ? s_.clusterVis.row(p) : s_.floodClusters.row(p);
-    }
+    bool finished(int portal) const { return s_.waveOf[static_cast<size_t>(portal)] < currentWave_; }
 
     // next = prev & mask [& passage]; true when next holds a cluster not yet marked visible.
+    // Most candidates have nothing new behind them: the words are only trimmed for those that do.
     bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
-        const uint64_t* m = mask(portal);
+        // Finished results of earlier waves prune harder than the base flood. A passage only
+        // holds clusters of the base flood of the portal it leads through, so that flood adds
+        // nothing to it.
+        const size_t p = static_cast<size_t>(portal);
+        const uint64_t* mask = s_.floodClusters.row(p);
+        if (finished(portal))
+            mask = s_.clusterVis.row(p);
+        else if (passage)
+            std::swap(mask, passage), passage = nullptr;
+        const uint64_t* __restrict in = prev.mightSee.data();
+        const uint64_t* __restrict m = mask;
+        const uint64_t* __restrict seen = vis_;
+        uint64_t* __restrict out = next.mightSee.data();
+        const size_t begin = prev.first, end = prev.last;
         uint64_t more = 0;
-        size_t first = prev.last, last = prev.first;
-        for (size_t w = prev.first; w < prev.last; ++w) {
-            uint64_t v = prev.mightSee[w] & m[w];
-            if (passage) v &= passage[w];
-            next.mightSee[w] = v;
-            if (v) {
-                first = std::min(first, w);
-                last = w + 1;
+        if (passage) {
+            for (size_t w = begin; w < end; ++w) {
+                const uint64_t v = in[w] & m[w] & passage[w];
+                out[w] = v;
+                more |= v & ~seen[w];
             }
-            more |= v & ~vis_[w];
+        } else {
+            for (size_t w = begin; w < end; ++w) {
+                const uint64_t v = in[w] & m[w];
+                out[w] = v;
+                more |= v & ~seen[w];
+            }
         }
+        if (!more) return false;
+        size_t first = begin, last = end;
+        while (!out[first]) ++first;  // `more` holds a bit, so some word is non-zero
+        while (!out[last - 1]) --last;
         next.first = first;
-        next.last = std::max(first, last);
-        return more != 0;
+        next.last = last;
+        return true;
     }
 
     const uint64_t* passageRow(int from, size_t k) const {
         return s_.mode == FlowMode::Portal ? nullptr : s_.passages->row(from, k);
     }
 
-    // Chops `pass` by the separators of `next` on one side (0: edges of the previous source with
-    // points of the previous pass; 1: the other way round, flipped); nullptr when nothing is left.
-    const Winding* clipBySeparators(const FlowLevel& prev, FlowLevel& next, int side, const VisPortal& candidate,
-                                    const Winding* pass) {
-        const Winding& from = side == 0 ? *prev.source : *prev.pass;
-        const Winding& to = side == 0 ? *prev.pass : *prev.source;
-        for (int edge = 0; edge < from.count && pass; ++edge) {
-            if (edge == next.edgesDone[side]) {
-                next.separatorFound[side][static_cast<size_t>(edge)] =
-                    findSeparator(from, to, edge, side == 1, next.separators[side][static_cast<size_t>(edge)]);
-                ++next.edgesDone[side];
+    // Drops from `here.mightSee` the clusters not yet marked that no line of the beam can reach:
+    // their portals lie wholly behind a separator, behind the plane of the portal just passed or
+    // behind the base portal. False when no unmarked cluster is left.
+    bool dropUnreachable(FlowLevel& here, const Plane& passPlane) const {
+        uint64_t more = 0;
+        for (size_t w = here.first; w < here.last; ++w) {
+            uint64_t open = here.mightSee[w] & ~vis_[w];
+            for (uint64_t bits = open; bits; bits &= bits - 1) {
+                const size_t c = w * 64 + static_cast<size_t>(std::countr_zero(bits));
+                const Box& box = s_.clusterBounds[c];
+                bool shut = boxBehind(passPlane, box) || boxBehind(base_.plane, box);
+                for (int k = 0; k < here.beam.count && !shut; ++k) shut = boxBehind(here.beam.planes[static_cast<size_t>(k)], box);
+                if (shut) open &= ~(uint64_t{1} << (c & 63));
             }
-            if (!next.separatorFound[side][static_cast<size_t>(edge)]) continue;
-            const Plane& plane = next.separators[side][static_cast<size_t>(edge)];
+            here.mightSee[w] = (here.mightSee[w] & vis_[w]) | open;
+            more |= open;
+        }
+        return more != 0;
+    }
+
+    // Chops `pass` by the beam of `prev`; nullptr when nothing is left.
+    static const Winding* clipByBeam(const FlowLevel& prev, FlowLevel& next, const VisPortal& candidate, const Winding* pass) {
+        for (int k = 0; k < prev.beam.count && pass; ++k) {
+            const Plane& plane = prev.beam.planes[static_cast<size_t>(k)];
             const float d = plane.distanceTo(candidate.origin);
             if (d < -candidate.radius) return nullptr;  // entirely behind
             if (d > candidate.radius) continue;         // entirely in front
@@ -157,21 +194,25 @@ private:
         else if (!(cur.source = chopWinding(prev.source, p.plane.flipped(), &cur.sourceBuffer)))
             return nullptr;
         if (!prev.pass) return pass;  // the second cluster can only be blocked if coplanar
-        pass = clipBySeparators(prev, cur, 0, p, pass);
-        return pass ? clipBySeparators(prev, cur, 1, p, pass) : nullptr;
+        return clipByBeam(prev, cur, p, pass);
     }
 
     // Walk on into the cluster portal `from` leads to; `depth` is the level of the state on arrival.
     void enter(int from, size_t depth) {
-        const size_t leaf = static_cast<size_t>(s_.graph.portals[static_cast<size_t>(from)].leaf);
+        const VisPortal& through = s_.graph.portals[static_cast<size_t>(from)];
+        const size_t leaf = static_cast<size_t>(through.leaf);
         // Clusters are convex (q3map2 merges only convex ones): a line never enters one twice.
         if (scratch_.onStack[leaf]) return;
+        FlowLevel& here = level(depth);
+        if (here.pass) {
+            buildBeam(*here.source, *here.pass, here.beam);
+            if (!dropUnreachable(here, through.plane)) return;
+        }
+        // Levels are held by pointer: deeper calls may add levels without moving these two.
+        const FlowLevel& prev = here;
+        FlowLevel& cur = level(depth + 1);
         scratch_.onStack[leaf] = 1;
-        level(depth + 1).edgesDone = {0, 0};
         for (const LeafExit& exit : s_.exits[leaf]) {
-            // `level` may grow the scratch in deeper calls: fetch the levels again each time.
-            FlowLevel& prev = *scratch_.levels[depth];
-            FlowLevel& cur = *scratch_.levels[depth + 1];
             if (!prev.mightSeeCluster(static_cast<size_t>(exit.leaf))) continue;
             const int pnum = exit.portal;
             // Nothing new to find behind p: its own cluster is in the set, so this also keeps
@@ -180,6 +221,7 @@ private:
             const VisPortal& p = s_.graph.portals[static_cast<size_t>(pnum)];
             if (s_.mode == FlowMode::Passage) {
                 setBit(vis_, static_cast<size_t>(p.leaf));
+                cur.pass = nullptr;
                 enter(pnum, depth + 1);
                 continue;
             }
@@ -236,7 +278,9 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
             if (!p.removed) exits[l].push_back({portals[k], p.leaf, static_cast<int>(k)});
         }
     }
-    FlowShared shared{graph, exits, floodClusters, passages, options.mode, clusterVis, waveOf};
+    const std::vector<Box> clusterBounds = clusterPortalBounds(graph);
+    ClusterKnowledge known(graph, clusterVis);
+    FlowShared shared{graph, exits, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
         // Within a wave the largest first, so that the longest walks do not start last.
@@ -253,6 +297,12 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
                 if (advance) advance();
             }
         }, tbb::simple_partitioner());
+        // Passages alone see through more than the separators let through: told both ways, their
+        // loose rows would loosen each other further.
+        if (options.mode == FlowMode::Passage) continue;
+        for (int portal : wave)
+            if (!graph.portals[static_cast<size_t>(portal)].removed)
+                known.learn(portal);
     }
     return clusterVis;
 }

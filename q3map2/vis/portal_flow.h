@@ -8,6 +8,13 @@
 // branch stops as soon as every cluster it could still reach is marked already, which prunes far
 // more than q3map2's portal sets while marking the same clusters.
 //
+// Two more cuts, both exact-conservative: at each step the clusters not yet marked whose portals
+// lie wholly behind one of the separators (or behind the portal just passed or the base portal)
+// leave the "might see" set, since no line of the chain can reach them however deep it goes
+// (flow_beam.h); and a walk only works on the pairs of clusters earlier waves left open
+// (cluster_knowledge.h): those known visible are marked from the start, those known hidden are
+// not looked for.
+//
 // Portals are done in waves along the order of their "might see" counts (smallest first); a
 // portal's walk prunes with the finished results of earlier waves and with the base flood of the
 // rest. The waves depend only on the portal count, so the result is the same at any thread count.

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "bsp_test_maps.h"
+#include "fake_map.h"
 
 namespace q3::bspstage {
 namespace {
@@ -13,6 +14,16 @@ LoadedMap load(const std::string& text, map::MapFile& file, MapLoadOptions optio
     static const ShaderTable shaders = test::commonShaders(log);
     file = map::parseMap(text, "test.map");
     return loadMapForBsp(file, shaders, options, log);
+}
+
+// A wedge 64 deep: floor, back wall, two sides and a slope from (0,0,size) down to (size,0,0).
+std::string wedgeBrush(int size) {
+    const std::string n = std::to_string(size);
+    return "{\n( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 64 0 ) ( 1 64 0 ) ( 0 64 1 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+           "( 0 0 " + n + " ) ( 0 64 " + n + " ) ( " + n + " 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n}\n";
 }
 
 TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
@@ -37,15 +48,7 @@ TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
 }
 
 TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
-    // A wedge: floor, back wall, two sides and a slope from (0,0,64) down to (64,0,0).
-    const std::string wedge = R"({
-( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 64 0 ) ( 1 64 0 ) ( 0 64 1 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-( 0 0 64 ) ( 0 64 64 ) ( 64 0 0 ) base/wall 0 0 0 0.5 0.5 0 0 0
-}
-)";
+    const std::string wedge = wedgeBrush(64);
     map::MapFile file;
     LoadedMap m = load(worldspawn(wedge), file);
     const Brush& b = m.entities[0].brushes.at(0);
@@ -62,6 +65,67 @@ TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
     // existing sides, so no edge bevel is needed.
     EXPECT_EQ(b.sides.size(), 7u);
     EXPECT_EQ(m.counts.edgeBevels, 0);
+}
+
+TEST(BspBrushes, SnapMovesAddedBevelsInwardsToMultiples) {
+    // A wedge 0..60 wide and high: its +X and +Z bevels land on 48 with -snap 16.
+    const std::string wedge = wedgeBrush(60);
+    map::MapFile file;
+    MapLoadOptions options;
+    options.bevelSnap = 16;
+    LoadedMap m = load(worldspawn(wedge), file, options);
+    const Brush& b = m.entities[0].brushes.at(0);
+    ASSERT_GE(b.sides.size(), 6u);
+    ASSERT_TRUE(b.sides[1].bevel);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[1].planeNum].dist(), 48);
+    ASSERT_TRUE(b.sides[5].bevel);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[5].planeNum].dist(), 48);
+    EXPECT_DOUBLE_EQ(m.planes[b.sides[0].planeNum].dist(), 0);  // a real side: never snapped
+    map::MapFile plainFile;
+    LoadedMap plain = load(worldspawn(wedge), plainFile);
+    EXPECT_DOUBLE_EQ(plain.planes[plain.entities[0].brushes.at(0).sides[1].planeNum].dist(), 60);
+}
+
+TEST(BspBrushes, FakeMapWritesEveryWorldSideAsThreeIntegerPoints) {
+    map::MapFile file;
+    LoadedMap m = load(worldspawn(boxBrush({0, 0, 0}, {64, 32, 16})), file);
+    const std::string text = fakeMapText(m.entities[0].brushes, m.planes);
+    EXPECT_EQ(text.rfind("{\n\"classname\" \"worldspawn\"\n{\n", 0), 0u);
+    size_t sides = 0;
+    for (size_t at = text.find("notexture 0 0 0 1 1\n"); at != std::string::npos;
+         at = text.find("notexture 0 0 0 1 1\n", at + 1))
+        ++sides;
+    EXPECT_EQ(sides, 6u);
+    // The -X side: the huge base winding of the plane x = 0 starts at ( 0 131072 131072 ).
+    EXPECT_NE(text.find("( 0 131072 131072 ) ( 0 -131072 131072 ) ( 0 -131072 -131072 ) notexture"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.substr(text.size() - 4), "}\n}\n");
+}
+
+TEST(BspBrushes, ClonesShareTheirParentsModelAndLoseTheirBrushes) {
+    auto brushEntity = [](const std::string& keys, double x) {
+        return "{\n\"classname\" \"func_static\"\n" + keys + boxBrush({x, 0, 0}, {x + 32, 32, 32}) + "}\n";
+    };
+    const std::string text = worldspawn(boxBrush({0, 0, -16}, {512, 512, 0})) +
+                             brushEntity("\"_clonename\" \"pillar\"\n", 0) +
+                             brushEntity("\"_clone\" \"pillar\"\n\"origin\" \"64 0 0\"\n", 100) +
+                             brushEntity("", 200) + brushEntity("\"_ins\" \"nobody\"\n", 300);
+    map::MapFile file;
+    LoadedMap m = load(text, file);
+    ASSERT_EQ(m.entities.size(), 5u);
+    EXPECT_EQ(m.entities[1].model, "*1");
+    EXPECT_EQ(m.entities[2].model, "*1");  // the clone draws its parent's model
+    EXPECT_TRUE(m.entities[2].brushes.empty());
+    EXPECT_EQ(m.entities[3].model, "*2");  // clones take no number
+    EXPECT_EQ(m.entities[4].model, "");    // no such parent: no model key, brushes kept
+    EXPECT_EQ(m.entities[4].brushes.size(), 1u);
+    MapLoadOptions onlyEnts;
+    onlyEnts.resolveClones = false;
+    map::MapFile file2;
+    LoadedMap plain = load(text, file2, onlyEnts);
+    EXPECT_EQ(plain.entities[2].model, "*2");
+    EXPECT_EQ(plain.entities[4].model, "*4");
 }
 
 TEST(BspBrushes, ContentsFromShaders) {

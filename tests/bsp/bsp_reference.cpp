@@ -18,13 +18,18 @@ namespace q3::bspstage::test {
 namespace fs = std::filesystem;
 using namespace q3::test;
 
-fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions) {
+fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions,
+                          bool meta) {
     const std::string name = mapSource.stem().string();
     const fs::path root = dataCache() / "bsp-prt";
     std::string key = conformance::freshCacheKey(reference, mapSource);
+    if (!meta) key += "-plain";
     for (char c : extraOptions) key += c == ' ' ? '_' : c;
     const fs::path final = root / key;
-    if (fs::exists(final / (name + ".log")) && fs::exists(final / (name + ".bsp"))) return final;
+    // -autocaulk stops before the BSP: its .caulk stands for it.
+    if (fs::exists(final / (name + ".log")) &&
+        (fs::exists(final / (name + ".bsp")) || fs::exists(final / (name + ".caulk"))))
+        return final;
     fs::remove_all(final);  // an older, incomplete entry
     std::random_device entropy;
     const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
@@ -32,7 +37,8 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     fs::copy_file(mapSource, work / "maps" / (name + ".map"));
     const std::string command = "cd " + shellQuote(work) + " && " + shellQuote(reference) +
                                 " -v -threads 2 -game quake3 -fs_basepath " + shellQuote(openArenaBase()) +
-                                " -fs_basegame baseoa -bsp -meta " + extraOptions + " " + shellQuote("maps/" + name + ".map");
+                                " -fs_basegame baseoa -bsp " + (meta ? "-meta " : "") + extraOptions + " " +
+                                shellQuote("maps/" + name + ".map");
     std::string output;
     const int status = runCommand(command, &output);
     if (status != 0) {
@@ -40,7 +46,7 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
         throw std::runtime_error("reference -bsp failed on " + mapSource.string() + ": " + output.substr(0, 400));
     }
     fs::create_directories(work / "keep");
-    for (const char* ext : {".prt", ".lin", ".bsp"})
+    for (const char* ext : {".prt", ".lin", ".bsp", ".srf", ".caulk"})
         if (fs::exists(work / "maps" / (name + ext))) fs::rename(work / "maps" / (name + ext), work / "keep" / (name + ext));
     writeFileAtomic(work / "keep" / (name + ".log"), output);
     fs::remove_all(work / "maps");

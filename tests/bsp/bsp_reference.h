@@ -7,12 +7,13 @@
 
 namespace q3::bspstage::test {
 
-// The reference's compile (-v -bsp -meta and `extraOptions`) of `mapSource`, cached under
-// <data cache>/bsp-prt/<key>/ (the key names the map, the reference binary's size and mtime, the
-// .map's hash and the extra options): the folder holding NAME.prt (or NAME.lin), NAME.bsp and
-// NAME.log (the -v output). Throws when it fails.
+// The reference's compile (-v -bsp -meta and `extraOptions`; without -meta when `meta` is false)
+// of `mapSource`, cached under <data cache>/bsp-prt/<key>/ (the key names the map, the reference
+// binary's size and mtime, the .map's hash and the options): the folder holding NAME.prt (or
+// NAME.lin), NAME.bsp, NAME.srf (or NAME.caulk with -autocaulk) and NAME.log (the -v output).
+// Throws when it fails.
 std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
-                                       const std::string& extraOptions = {});
+                                       const std::string& extraOptions = {}, bool meta = true);
 
 // Every shader of the OpenArena data (loaded once).
 const ShaderTable& openArenaShaders();

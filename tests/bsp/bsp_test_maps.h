@@ -84,6 +84,13 @@ textures/base/detailwall
 {
 	surfaceparm detail
 }
+textures/skies/stars
+{
+	surfaceparm sky
+	surfaceparm noimpact
+	surfaceparm nolightmap
+	skyParms env/stars - -
+}
 )";
     std::vector<ShaderScriptSource> scripts{{"scripts/common.shader", "common.shader", kScript}};
     return buildShaderTable(scripts, {}, false, log);

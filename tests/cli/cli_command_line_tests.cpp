@@ -1,4 +1,5 @@
 // The whole command line: common options, the stage switch, the map path.
+#include "common_option_table.h"
 #include "cli_test_support.h"
 
 #include <gtest/gtest.h>
@@ -105,8 +106,8 @@ TEST(CliCommandLine, MapPathExtensions) {
     EXPECT_EQ(cli::bspPathFor("maps/a"), std::filesystem::path("maps/a.bsp"));
     EXPECT_EQ(cli::bspPathFor("maps/A.BSP"), std::filesystem::path("maps/A.BSP"));
     EXPECT_EQ(usageErrorOf([] { cli::bspPathFor("maps/a.txt"); }),
-              "map file 'maps/a.txt' must end in .bsp or .map (or have no extension)");
-    EXPECT_EQ(splitError({"-info", "x.pk3"}), "map file 'x.pk3' must end in .bsp or .map (or have no extension)");
+              "map file 'maps/a.txt' must end in .bsp, .map, .reg or .ent (or have no extension)");
+    EXPECT_EQ(splitError({"-info", "x.pk3"}), "map file 'x.pk3' must end in .bsp, .map, .reg or .ent (or have no extension)");
 }
 
 TEST(CliCommandLine, HelpRequests) {
@@ -118,6 +119,31 @@ TEST(CliCommandLine, HelpRequests) {
     line = split({"--help", "-light"});
     EXPECT_EQ(line.helpTopic, "light");
     EXPECT_EQ(splitError({"-help", "light", "extra"}), "-help takes at most one stage name, got 'extra'");
+}
+
+}  // namespace
+}  // namespace q3::test
+
+namespace q3::test {
+namespace {
+
+// With -bsp in the build, a command line without a stage switch compiles the map, as q3map2 does:
+// the common options are taken from anywhere, the rest are -bsp's.
+TEST(CliCommandLine, NoStageSwitchMeansBsp) {
+    std::vector<cli::StageDescription> stages = testStages();
+    for (cli::StageDescription& s : stages)
+        if (s.name == "-bsp") s.available = true;
+    CommonOptions common;
+    const cli::CommandLine line =
+        cli::splitCommandLine(std::vector<std::string>{"-v", "-nodetail", "-threads", "2", "maps/x.map"},
+                              cli::commonOptionTable(), stages, common);
+    EXPECT_EQ(line.stage, "-bsp");
+    EXPECT_EQ(line.stageArgs, (std::vector<std::string>{"-nodetail"}));
+    EXPECT_EQ(line.mapArg, "maps/x.map");
+    EXPECT_TRUE(common.verbose);
+    EXPECT_EQ(common.threads, 2);
+    EXPECT_EQ(common.mapPath, std::filesystem::path("maps/x.bsp"));
+    EXPECT_EQ(common.commandLine, "-bsp -nodetail");
 }
 
 }  // namespace

@@ -84,7 +84,7 @@ TEST(FeedbackExecutable, RefusedCommandLineReachesTheEditorAsAnError) {
     int status = runCommand(connectTo(listener) + "-bsp -meta /maps/x.map </dev/null", &console);
     listener.join();
     EXPECT_EQ(status, 2);
-    const std::string error = "-bsp is a q3map2 stage this build does not implement yet";
+    const std::string error = "-meta is a q3map2 option this build does not implement yet";
     EXPECT_EQ(console, "ERROR: " + error + "\n");
     std::vector<Message> messages = messagesOf(listener.joined());
     const Message* m = findMessage(messages, error);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "angle.h"
@@ -272,6 +273,34 @@ TEST(AreaLight, FormFactorUpperBoundHoldsAndIsUseful) {
     EXPECT_LT(edgeOn, headOn * 0.1f);
     EXPECT_GE(headOn, std::fabs(pointToPolygonFormFactor({0, 0, 1000}, {0, 0, -1}, square)));
     EXPECT_FALSE(std::isfinite(formFactorUpperBound(EmitterBounds{}, {0, 0, 1000}, {0, 0, -1})));
+}
+
+// The four-lane form factor must give the one-edge form's bits: random polygons of 3 to 70 corners
+// (past 64 both take the one-edge path), near, far, in front and behind, plus edges seen end-on.
+TEST(AreaLight, VectorFormFactorGivesTheScalarBits) {
+    std::mt19937 rng(2718);
+    std::uniform_real_distribution<float> unit(-1, 1);
+    int nonZero = 0;
+    for (int trial = 0; trial < 30000; ++trial) {
+        const int corners = 3 + trial % 68;
+        const float size = 1 + 200 * (unit(rng) + 1);
+        std::vector<Vec3> winding;
+        for (int i = 0; i < corners; ++i) {
+            const float a = 2 * float(kPiD) * float(i) / float(corners);
+            winding.push_back({size * std::cos(a), size * std::sin(a), trial % 3 == 0 ? size * 0.2f * unit(rng) : 0.0f});
+        }
+        Vec3 point = Vec3{unit(rng), unit(rng), unit(rng)} * (size * (trial % 7 == 0 ? 40.0f : 3.0f));
+        if (trial % 11 == 0) point = winding[0] + (winding[1] - winding[0]) * 2.0f;  // on an edge's line
+        const Vec3 normal = normalize(Vec3{unit(rng), unit(rng), unit(rng)} + Vec3{0, 0, 0.01f});
+        const float vector = pointToPolygonFormFactor(point, normal, winding);
+        const float scalar = pointToPolygonFormFactorScalar(point, normal, winding);
+        uint32_t vb, sb;
+        std::memcpy(&vb, &vector, 4);
+        std::memcpy(&sb, &scalar, 4);
+        ASSERT_EQ(vb, sb) << "trial " << trial << ": " << vector << " vs " << scalar;
+        nonZero += scalar != 0;
+    }
+    EXPECT_GT(nonZero, 25000);
 }
 
 TEST(AreaLight, FormFactorMatchesAnalyticSquare) {

@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "light_test_util.h"
+#include "light_reach.h"
 #include "lights.h"
 
 namespace q3::light {
@@ -448,6 +451,47 @@ TEST(SurfaceLights, LightEnvelopes) {
     controlled.controlled = ControlledParams{};
     controlled.controlled->falloffEnd = 420;
     EXPECT_FLOAT_EQ(lightEnvelope(controlled), 420);
+}
+
+
+// The envelope index answers exactly what testing every light with lightReachesBounds answers, in
+// light order: random point, spot, area and sun lights of random envelopes against random boxes,
+// including boxes touching an envelope's edge and lights more than one index block apart.
+TEST(LightReachIndex, MatchesEveryLightTested) {
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<float> coord(-4000, 4000), size(0, 600), unit(0, 1);
+    std::vector<Light> lights(700);
+    std::vector<float> envelopes(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        Light& l = lights[i];
+        const float kind = unit(rng);
+        l.type = kind < 0.5f ? LightType::Point : kind < 0.8f ? LightType::Area : kind < 0.95f ? LightType::Spot : LightType::Sun;
+        l.origin = {coord(rng), coord(rng), coord(rng)};
+        envelopes[i] = unit(rng) < 0.02f ? std::numeric_limits<float>::infinity() : size(rng) * 3;
+    }
+    const LightReach reach(lights, envelopes);
+    std::vector<uint32_t> got;
+    size_t reached = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        Bounds box;
+        const Vec3 corner{coord(rng), coord(rng), coord(rng)};
+        box.add(corner);
+        box.add(corner + Vec3{size(rng), size(rng), size(rng)});
+        if (trial % 10 == 0) {  // a box whose nearest point is just inside or outside some envelope
+            const Light& l = lights[size_t(trial) % lights.size()];
+            const float e = envelopes[size_t(trial) % lights.size()];
+            box = Bounds{};
+            box.add(l.origin + Vec3{e * (trial % 20 == 0 ? 0.9999f : 1.0001f), 0, 0});
+            box.add(l.origin + Vec3{e + 50, 10, 10});
+        }
+        reach.reaching(box, got);
+        std::vector<uint32_t> expected;
+        for (size_t i = 0; i < lights.size(); ++i)
+            if (lightReachesBounds(lights[i], box, envelopes[i])) expected.push_back(uint32_t(i));
+        ASSERT_EQ(got, expected) << "trial " << trial;
+        reached += got.size();
+    }
+    EXPECT_GT(reached, 3000u);
 }
 
 }  // namespace

@@ -38,11 +38,13 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out) {
-    out.clear();
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]) &&
-            !areaLightSurelyDarkIn(lights[i], bounds, settings))
-            out.push_back(static_cast<uint32_t>(i));
+    gridLightsReaching(lights, LightReach(lights, envelopes), bounds, settings, out);
+}
+
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out) {
+    reach.reaching(bounds, out);
+    std::erase_if(out, [&](uint32_t i) { return !lights[i].affectsGrid || areaLightSurelyDarkIn(lights[i], bounds, settings); });
 }
 
 namespace {
@@ -50,11 +52,11 @@ constexpr float kGridEpsilon = 0.0f;       // GRID_EPSILON: first point-in-solid
 constexpr float kNudgedEpsilon = -0.125f;  // VERTEX_EPSILON: test of nudged points
 }  // namespace
 
-std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges) {
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, const GridNudges& nudges) {
     if (!tree || !tree->hasNodes()) return PlacedGridPoint{origin, -1, false};
     const int cluster = tree->clusterForPointExt(origin, kGridEpsilon);
     if (cluster >= 0) return PlacedGridPoint{origin, cluster, false};
-    const std::optional<Vec3> free = tree->nudgeOutOfSolid(origin, nudges, kNudgedEpsilon);
+    const std::optional<Vec3> free = tree->nudgeOutOfSolid(origin, nudges.offsets, nudges.box, kNudgedEpsilon);
     if (!free) return std::nullopt;
     return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }
@@ -136,10 +138,11 @@ std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* 
     std::vector<std::optional<PlacedGridPoint>> placements(count);
     // In parallel, what needs no draw: free lattice points, and points whose every try fails.
     std::vector<uint8_t> hopeless(count, 0);
+    const GridNudges noNudges{std::vector<Vec3>{}};
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i) {
-                placements[i] = placeGridPoint(tree, latticePoint(i), {});
+                placements[i] = placeGridPoint(tree, latticePoint(i), noNudges);
                 hopeless[i] = !placements[i] && gridNudgesCannotLeaveSolid(bsp, latticePoint(i), grid.size);
             }
         });
@@ -172,19 +175,20 @@ bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
 
 }  // namespace
 
-void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
-                       const ContributionSettings& settings,
-                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
-                       const BspTree* solidTree) {
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree) {
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
     const std::vector<float> envelopes = lightEnvelopes(lights, settings.forceFast);
+    const LightReach reach(lights, envelopes);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         BlockLights reaching;
+        std::vector<GridBlockPoint> points;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
             const Bounds bounds = gridBlockBounds(block, grid.mins, grid.size, margin);
-            gridLightsReaching(lights, envelopes, bounds, settings, reaching.candidates);
+            gridLightsReaching(lights, reach, bounds, settings, reaching.candidates);
             reaching.clearOfSolid.clear();
             if (solidTree) {
                 // Sun rays run to the sky, not to an origin: they keep their own walk.
@@ -192,16 +196,30 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                     reaching.clearOfSolid.push_back(
                         lights[i].type != LightType::Sun && boxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
             }
+            points.clear();
             block.forEachPoint([&](int x, int y, int z) {
                 const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
                                   grid.mins.z + float(z) * grid.size.z};
-                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, reaching);
+                points.push_back({size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin});
             });
+            lightBlock(points, reaching);
             progress.advance(block.pointCount());
         }
     };
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
+}
+
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                       const ContributionSettings& settings,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
+                       const BspTree* solidTree) {
+    lightGridBlocks(
+        grid, lights, margin, settings, blockEdge, threads, progress,
+        [&](std::span<const GridBlockPoint> points, const BlockLights& reaching) {
+            for (const GridBlockPoint& p : points) lightPoint(p.index, p.origin, reaching);
+        },
+        solidTree);
 }
 
 }  // namespace q3::light

@@ -11,8 +11,10 @@
 #include <span>
 #include <vector>
 
+#include "bsp_tree.h"
 #include "c_library_random.h"
 #include "light_contribution.h"
+#include "light_reach.h"
 #include "lights.h"
 #include "vec3.h"
 
@@ -47,18 +49,26 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 // lights may add more than their -fast tolerance there (areaLightSurelyDarkIn).
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
+// The same from an index of the lights' envelopes built once for many blocks.
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out);
 
-class BspTree;
+// The nudges tried for grid points in solid (nearest first), with their box taken once.
+struct GridNudges {
+    std::vector<Vec3> offsets;
+    BspTree::OffsetBox box;
+    explicit GridNudges(std::vector<Vec3> nudges) : offsets(std::move(nudges)), box(BspTree::offsetBox(offsets)) {}
+};
 
-// Where a grid point is lit: its lattice position, or the first free nudge of it (`nudges`, nearest
-// first) when it starts in solid. `tree` null (or a BSP without nodes): every point is free, cluster
-// -1. nullopt: every nudge stays in solid.
+// Where a grid point is lit: its lattice position, or the first free nudge of it when it starts in
+// solid. `tree` null (or a BSP without nodes): every point is free, cluster -1. nullopt: every
+// nudge stays in solid.
 struct PlacedGridPoint {
     Vec3 origin;
     int cluster = -1;
     bool nudged = false;
 };
-std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, std::span<const Vec3> nudges);
+std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, const GridNudges& nudges);
 
 // q3map2's TraceGrid nudges a point in solid by up to 199 random tries (the step grows by 0.005 from
 // 0.005; each try moves the point by (Random() - 0.5) x step x `cellSize` along x, then y, then z)
@@ -106,5 +116,16 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                        const ContributionSettings& settings,
                        int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
                        const BspTree* solidTree = nullptr);
+
+// The same walk, one call per block with all its points (for callers that trace a block's rays
+// together).
+struct GridBlockPoint {
+    size_t index;
+    Vec3 origin;
+};
+using GridBlockFn = std::function<void(std::span<const GridBlockPoint> points, const BlockLights& lights)>;
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree = nullptr);
 
 }  // namespace q3::light

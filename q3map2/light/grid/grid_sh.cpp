@@ -223,8 +223,8 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     const float nudgeRadius = 0.5f * maxComponent(layout.size);
     // Offsets half the radius apart (33 positions): a point deep in solid costs one tree walk per
     // position, and solid points are filled from their neighbours afterwards anyway.
-    const std::vector<Vec3> offsets = useTree ? nudgeOffsets(nudgeRadius, std::max(1.0f, nudgeRadius / 2.0f))
-                                              : std::vector<Vec3>{};
+    const GridNudges offsets(useTree ? nudgeOffsets(nudgeRadius, std::max(1.0f, nudgeRadius / 2.0f))
+                                     : std::vector<Vec3>{});
     const float gridScale = ctx.options.gridScale;
 
     std::vector<uint8_t> solid(numPoints, 0), nudged(numPoints, 0);

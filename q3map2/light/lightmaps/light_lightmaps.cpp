@@ -90,8 +90,10 @@ std::vector<SurfaceLight> lightPass(const LightContext& ctx, std::span<const int
                                     const SurfacePass& pass, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
     const std::vector<float> envelopes = lightEnvelopes(pass.lights, env.settings.forceFast);
+    const LightReach reach(pass.lights, envelopes);
     SurfacePass withEnvelopes = pass;
     withEnvelopes.envelopes = envelopes;
+    withEnvelopes.reach = &reach;
     std::vector<SurfaceLight> results(surfaces.size());
     Progress progress = Progress::forConsole(log, surfaces.size());
     auto body = [&](const tbb::blocked_range<size_t>& range) {
@@ -186,14 +188,24 @@ struct StoreResult {
 StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bool final, Log& log) {
     const LightOptions& o = ctx.options;
     const std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx);
-    std::vector<LightmapBlock> blocks;
+    // One block per lit surface, in surface order; made in parallel (each its own slot and surface).
+    std::vector<size_t> litIndex;
+    for (size_t k = 0; k < lit.size(); ++k)
+        if (lit[k].ok) litIndex.push_back(k);
+    std::vector<LightmapBlock> blocks(litIndex.size());
+    tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(size_t(0), litIndex.size(), [&](size_t b) {
+            const SurfaceLight& s = lit[litIndex[b]];
+            blocks[b] = styleZeroBlock(ctx, s, deluxe ? &*deluxe : nullptr);
+            applyLightmapOrigin(ctx.bsp.surfaces[size_t(s.surfaceNum)], s.layout);
+        });
+    });
     std::vector<StyledLightmap> styled;
-    for (SurfaceLight& s : lit) {
-        if (!s.ok) continue;
+    for (size_t b = 0; b < litIndex.size(); ++b) {
+        const SurfaceLight& s = lit[litIndex[b]];
         for (const LightmapLayer& layer : s.layers)
-            if (layer.style != 0) styled.push_back({int(blocks.size()), layer.style, s.width, s.height, layer.color});
-        blocks.push_back(styleZeroBlock(ctx, s, deluxe ? &*deluxe : nullptr));
-        applyLightmapOrigin(ctx.bsp.surfaces[size_t(s.surfaceNum)], s.layout);
+            if (layer.style != 0) styled.push_back({int(b), layer.style, s.width, s.height, layer.color});
     }
 
     PackOptions pack;
@@ -232,7 +244,8 @@ void lightLightmaps(LightContext& ctx, Log& log) {
 
     std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes,
                                                SurfacePass{ctx.lights, true, deluxe}, log);
-    std::vector<SurfaceLight> total = o.bounceOnly && o.bounce > 0 ? emptyLike(pass) : pass;
+    // Without bounces the direct pass is the total (a copy of every luxel would only cost time).
+    std::vector<SurfaceLight> total = o.bounce <= 0 ? std::move(pass) : o.bounceOnly ? emptyLike(pass) : pass;
     if (o.bounce > 0) {
         BouncePasses bounce(ctx, shaderAlbedo(ctx, log), log);
         for (int b = 1; b <= o.bounce; ++b) {

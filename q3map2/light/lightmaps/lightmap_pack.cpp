@@ -1,6 +1,7 @@
 #include "lightmap_pack.h"
 
 #include <algorithm>
+#include <optional>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -204,7 +205,15 @@ void mergeTwinTexels(LightmapBlock& master, const LightmapBlock& twin) {
 // The solid state and colour of a block, and the blocks it is compared with, on bytes or (when
 // every block carries it) on light.
 struct CollapseState {
-    std::vector<LightmapBlock> merged;  // the blocks, masters holding their twins' texels
+    // The blocks as merging leaves them: masters that took in a twin have their own copy (made at
+    // the first merge), every other block is read in place.
+    std::span<const LightmapBlock> blocks;
+    std::vector<std::optional<LightmapBlock>> own;
+    const LightmapBlock& merged(size_t i) const { return own[i] ? *own[i] : blocks[i]; }
+    LightmapBlock& mergedForWrite(size_t i) {
+        if (!own[i]) own[i] = blocks[i];
+        return *own[i];
+    }
     std::vector<uint8_t> solid;
     std::vector<Rgb8> solidTexel;       // the stored texel of a solid block
     std::vector<Vec3> solidLight;       // light mode: q3map2's solid colour (the lowest light)
@@ -240,8 +249,8 @@ bool lightIsSolid(const LightmapBlock& b, Vec3& lowest) {
 // epsilon; otherwise the same size and, over the texels both use, every channel within 3 and the
 // mean difference (checked as it accumulates) within the luxel tolerance.
 bool lightMatches(const CollapseState& st, size_t a, size_t b) {
-    const LightmapBlock& la = st.merged[a];
-    const LightmapBlock& lb = st.merged[b];
+    const LightmapBlock& la = st.merged(a);
+    const LightmapBlock& lb = st.merged(b);
     if (la.brightness != lb.brightness || st.solid[a] != st.solid[b]) return false;
     if (st.solid[a]) return maxComponent(absolute(st.solidLight[a] - st.solidLight[b])) < kSolidEpsilon;
     if (la.width != lb.width || la.height != lb.height) return false;
@@ -262,13 +271,13 @@ bool lightMatches(const CollapseState& st, size_t a, size_t b) {
 // q3map2 MergeBSPLuxels on light: the master takes the twin's light where it has none and the mean
 // where both have some (solid ones: the mean colour); its bytes follow.
 void mergeTwinLight(CollapseState& st, size_t master, size_t twin, const PackOptions& o) {
-    LightmapBlock& m = st.merged[master];
     if (st.solid[master]) {
         st.solidLight[master] = (st.solidLight[master] + st.solidLight[twin]) * 0.5f;
-        st.solidTexel[master] = lightToTexel(st.solidLight[master], m.brightness, o);
+        st.solidTexel[master] = lightToTexel(st.solidLight[master], st.merged(master).brightness, o);
         return;
     }
-    const LightmapBlock& t = st.merged[twin];
+    LightmapBlock& m = st.mergedForWrite(master);
+    const LightmapBlock& t = st.merged(twin);
     if (m.used.empty()) m.used.assign(m.texels.size(), 1);
     for (size_t i = 0; i < m.light.size(); ++i) {
         if (!texelUsed(t, i)) continue;
@@ -283,8 +292,9 @@ void mergeTwinLight(CollapseState& st, size_t master, size_t twin, const PackOpt
 // can match (solid ones all together, others by size): the search runs within each key.
 CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOptions& o) {
     CollapseState st;
-    st.merged.assign(blocks.begin(), blocks.end());
+    st.blocks = blocks;
     const size_t n = blocks.size();
+    st.own.resize(n);
     st.solid.assign(n, 0);
     st.solidTexel.assign(n, Rgb8{});
     st.solidLight.assign(n, Vec3{});
@@ -321,11 +331,11 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
                     st.twin[j] = int(i);
                     mergeTwinLight(st, i, j, o);
                 } else {
-                    if (!blocksMatchKnown(st.merged[i], st.solid[i], st.solidTexel[i], blocks[j], st.solid[j],
+                    if (!blocksMatchKnown(st.merged(i), st.solid[i], st.solidTexel[i], blocks[j], st.solid[j],
                                           st.solidTexel[j]))
                         continue;
                     st.twin[j] = int(i);
-                    if (!st.solid[i]) mergeTwinTexels(st.merged[i], blocks[j]);
+                    if (!st.solid[i]) mergeTwinTexels(st.mergedForWrite(i), blocks[j]);
                 }
             }
         }
@@ -372,7 +382,6 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     // Identical lightmaps share the texels of the first one, which takes theirs in.
     const CollapseState collapsed = collapseTwins(blocks, options);
     const std::vector<uint8_t>& solid = collapsed.solid;
-    const std::vector<LightmapBlock>& merged = collapsed.merged;
     const std::vector<int>& twin = collapsed.twin;
 
     std::vector<size_t> order;
@@ -391,7 +400,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         const bool isSolid = solid[index] != 0;
         // q3map2's early page test counts the texels of the lightmap before any twin merged in.
         const int needed = usedTexels(b, isSolid);
-        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(merged[index]);
+        const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(collapsed.merged(index));
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
             const Page& page = pages[p];
@@ -435,7 +444,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             pageIndex = int(pages.size()) - 1;
             px = py = 0;
         }
-        stamp(pages[size_t(pageIndex)], pageSize, merged[index], isSolid, collapsed.solidTexel[index], px, py);
+        stamp(pages[size_t(pageIndex)], pageSize, collapsed.merged(index), isSolid, collapsed.solidTexel[index], px, py);
         packed.placements[index] = {pageIndex, px, py, isSolid ? 1 : b.width, isSolid ? 1 : b.height, isSolid, -1};
     }
     for (size_t i = 0; i < blocks.size(); ++i) {

@@ -132,71 +132,6 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
 
 }  // namespace
 
-float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
-    const size_t n = winding.size();
-    if (n < 3) return 0;
-    // Each edge adds its angle seen from the point times the cosine between the normal and the
-    // plane through the point and the edge. Both come from the cross and dot products of the two
-    // corner offsets, whatever their lengths: the offsets need no normalising.
-    double total = 0;
-    Vec3 a = winding[0] - point;
-    float a2 = dot(a, a);
-    for (size_t i = 1; i <= n; ++i) {
-        const Vec3 b = winding[i % n] - point;
-        const float b2 = dot(b, b);
-        const Vec3 c = cross(a, b);
-        const float c2 = dot(c, c);
-        // An edge seen end-on (sine of its angle below 1e-4) adds nothing.
-        if (c2 >= 1e-8f * a2 * b2 && c2 > 0) {
-            const float sine = std::sqrt(c2);
-            const float angle = atan2NonNegative(sine, dot(a, b));
-            total += static_cast<double>(dot(normal, c) / sine) * static_cast<double>(angle);
-            if (total > 6.3 || total < -6.3) return 0;  // numerically broken polygon
-        }
-        a = b;
-        a2 = b2;
-    }
-    return static_cast<float>(total / (2.0 * kPiD));
-}
-
-EmitterBounds emitterBounds(const std::vector<Vec3>& winding) {
-    EmitterBounds b;
-    if (winding.size() < 3) return b;
-    for (const Vec3& v : winding) b.center += v;
-    b.center = b.center / static_cast<float>(winding.size());
-    Vec3 newell;
-    b.radius = 0;
-    for (size_t i = 0; i < winding.size(); ++i) {
-        b.radius = std::max(b.radius, length(winding[i] - b.center));
-        newell += cross(winding[i], winding[(i + 1) % winding.size()]);
-        if (i >= 1 && i + 1 < winding.size())
-            b.area += 0.5f * length(cross(winding[i] - winding[0], winding[i + 1] - winding[0]));
-    }
-    const float newellLength = length(newell);
-    if (newellLength > 0) {
-        b.planeNormal = newell / newellLength;
-        for (const Vec3& v : winding) b.flatness = std::max(b.flatness, std::fabs(dot(v - b.center, b.planeNormal)));
-        b.flat = b.flatness <= 0.01f;
-    }
-    return b;
-}
-
-float formFactorUpperBound(const EmitterBounds& b, Vec3 point, Vec3 normal) {
-    constexpr float kUnbounded = std::numeric_limits<float>::infinity();
-    if (b.radius < 0) return kUnbounded;
-    const Vec3 toCenter = b.center - point;
-    const float nearest = length(toCenter) - b.radius;
-    if (!(nearest > 1.0f)) return kUnbounded;
-    // Both cosines of the form factor's integrand, bounded over the polygon: the receiver's from
-    // how far the sphere reaches along its normal, the emitter's (flat ones) from the height above
-    // its plane.
-    const float receiver = std::min(1.0f, (std::fabs(dot(normal, toCenter)) + b.radius) / nearest);
-    const float emitter = b.flat ? std::min(1.0f, (std::fabs(dot(toCenter, b.planeNormal)) + b.flatness) / nearest) : 1.0f;
-    const float bound = b.area * receiver * emitter / (kPi * nearest * nearest);
-    // Room for the float rounding of the exact evaluation.
-    return bound * 1.02f + 1e-5f;
-}
-
 bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings) {
     if (light.type != LightType::Area || light.controlled || settings.faster || box.empty()) return false;
     // The per-point tests drop points more than 1 unit behind a one-sided emitter.
@@ -209,8 +144,14 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
     if (!(light.fast || settings.forceFast) || !(light.add > 0) || light.emitter.radius < 0) return false;
     // Points within 8 units of the emitter's plane are pushed to 8 in front of it: under 16 units.
     constexpr float kPushReach = 16.0f;
+    // The nearer of two lower bounds of the distance between the box and the polygon: to the
+    // emitter's sphere and to its corners' box.
     const Vec3 nearestInBox = vmin(vmax(light.emitter.center, box.mins), box.maxs);
-    const float nearest = distance(nearestInBox, light.emitter.center) - light.emitter.radius - kPushReach;
+    Vec3 gap;
+    for (int k = 0; k < 3; ++k)
+        gap[k] = std::max({0.0f, light.emitter.box.mins[k] - box.maxs[k], box.mins[k] - light.emitter.box.maxs[k]});
+    const float nearest = std::max(distance(nearestInBox, light.emitter.center) - light.emitter.radius, length(gap)) -
+                          kPushReach;
     if (!(nearest > 1.0f)) return false;
     // Both cosines at most 1; the extra 10 % keeps this bound above every per-point one whatever
     // their roundings.

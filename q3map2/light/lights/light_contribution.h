@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "form_factor.h"
 #include "light_types.h"
 #include "lights.h"
 #include "trace_scene.h"
@@ -52,15 +53,6 @@ struct LightingEnv {
     // structural solid (BspTree::hullClearOfSolid), so rays skip that walk.
     bool clearOfSolid = false;
 };
-
-// Fraction of the hemisphere above (point, normal) covered by the polygon, signed by facing
-// (q3map2 PointToPolygonFormFactor). 0 for degenerate polygons.
-float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding);
-
-// A bound no smaller than |pointToPolygonFormFactor(point, normal, winding)| for the polygon of
-// `bounds` (unit `normal`): area x cosine bounds / (pi d^2) from the nearest possible distance d.
-// Infinity when the point may lie inside the bounding sphere or the bounds are unknown.
-float formFactorUpperBound(const EmitterBounds& bounds, Vec3 point, Vec3 normal);
 
 // Whether area light `light` surely lights no luxel or grid point inside `box`, so a caller may
 // skip the box at once: the box lies behind a one-sided emitter, or the per-point

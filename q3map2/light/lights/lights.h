@@ -40,10 +40,11 @@ struct ControlledParams {
 };
 
 // What the -fast test of an area light needs to know of its polygon without walking it: a sphere
-// around it, its area, and its plane when it is flat (see formFactorUpperBound).
+// and a box around it, its area, and its plane when it is flat (see formFactorUpperBound).
 struct EmitterBounds {
     Vec3 center;
     float radius = -1;  // < 0: unknown, no bound
+    Bounds box;         // of the corners
     float area = 0;     // of the fan from the first corner (the polygon's, when it is flat)
     bool flat = false;
     Vec3 planeNormal;   // unit, when flat

@@ -7,6 +7,17 @@
 
 namespace q3::light {
 
+// CompactNode::axis for a plane normal: 0..2 when it is exactly +1 on that axis and 0 elsewhere,
+// 3..5 for -1, 6 for any other.
+static int32_t axialPlaneCode(const float normal[3]) {
+    for (int k = 0; k < 3; ++k) {
+        const bool rest = normal[(k + 1) % 3] == 0.0f && normal[(k + 2) % 3] == 0.0f;
+        if (rest && normal[k] == 1.0f) return k;
+        if (rest && normal[k] == -1.0f) return k + 3;
+    }
+    return 6;
+}
+
 bool shaderIsTranslucent(const bsp::Shader& shader) {
     using namespace contents;
     // The content flags the C_TRANSLUCENT surfaceparms of q3map2's quake3 game table set.
@@ -45,6 +56,37 @@ BspTree::BspTree(const bsp::Bsp& bsp, std::span<const uint8_t> translucentShader
         bytesPerCluster_ = header[1];
     }
     if (compactWalks) buildCompactTree();
+    buildLeafSolids();
+}
+
+void BspTree::buildLeafSolids() {
+    const size_t numLeafs = bsp_.leafs.size();
+    leafSolidStart_.assign(numLeafs + 1, 0);
+    for (size_t l = 0; l < numLeafs; ++l) {
+        leafSolidStart_[l] = uint32_t(leafSolids_.size());
+        const bsp::Leaf& leaf = bsp_.leafs[l];
+        if (leaf.cluster < 0) continue;  // clusterInLeaf answers -1 at once
+        for (int i = 0; i < leaf.numLeafBrushes; ++i) {
+            const int lb = leaf.firstLeafBrush + i;
+            if (lb < 0 || lb >= int(bsp_.leafBrushes.size())) continue;
+            const int b = bsp_.leafBrushes[lb];
+            if (!brushIsOpaque(b)) continue;
+            const bsp::Brush& brush = bsp_.brushes[b];
+            LeafSolid solid{b, uint32_t(solidPlanes_.size()), 0};
+            // Axial sides first: they are the brush's box, which most points lie outside of, and
+            // each takes one subtraction (the order of the tests does not change their answer).
+            for (const bool axial : {true, false})
+                for (int k = 0; k < brush.numSides; ++k) {
+                    const bsp::Plane& plane = bsp_.planes[bsp_.brushSides[brush.firstSide + k].planeNum];
+                    const int32_t axis = axialPlaneCode(plane.normal);
+                    if ((axis < 6) == axial)
+                        solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist, axis});
+                }
+            solid.numPlanes = uint32_t(solidPlanes_.size()) - solid.firstPlane;
+            leafSolids_.push_back(solid);
+        }
+    }
+    leafSolidStart_[numLeafs] = uint32_t(leafSolids_.size());
 }
 
 // One step of q3map2's TraceLine at a node: a segment whose ends lie at `front` and `back` from the
@@ -133,13 +175,8 @@ void BspTree::buildCompactTree() {
             newIndex[size_t(index)] = int32_t(out.size());
             const bsp::Node& n = nodes[size_t(index)];
             const bsp::Plane& plane = bsp_.planes[size_t(n.planeNum)];
-            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, 6,
+            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, axialPlaneCode(plane.normal),
                           {n.children[0], n.children[1]}};
-            for (int k = 0; k < 3 && c.axis == 6; ++k) {
-                const bool rest = plane.normal[(k + 1) % 3] == 0.0f && plane.normal[(k + 2) % 3] == 0.0f;
-                if (rest && plane.normal[k] == 1.0f) c.axis = k;
-                if (rest && plane.normal[k] == -1.0f) c.axis = k + 3;
-            }
             out.push_back(c);
             for (int side = 1; side >= 0; --side)
                 if (keep(n.children[side])) stack.push_back(n.children[side]);
@@ -421,22 +458,26 @@ int BspTree::clusterForPointExt(Vec3 point, float epsilon) const {
 
 int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     if (leafNum < 0 || leafNum >= int(bsp_.leafs.size())) return -1;
-    const bsp::Leaf& leaf = bsp_.leafs[leafNum];
-    if (leaf.cluster < 0) return -1;
-    for (int i = 0; i < leaf.numLeafBrushes; ++i) {
-        const int lb = leaf.firstLeafBrush + i;
-        if (lb < 0 || lb >= int(bsp_.leafBrushes.size())) continue;
-        const int b = bsp_.leafBrushes[lb];
-        if (!brushIsOpaque(b)) continue;
-        const bsp::Brush& brush = bsp_.brushes[b];
+    const int cluster = bsp_.leafs[size_t(leafNum)].cluster;
+    if (cluster < 0) return -1;
+    // planeDistance's arithmetic: float inputs, double products and sums. For an axial plane of a
+    // finite point that is p[axis] - dist bit for bit (the other products are zeros).
+    const WalkPoint p(point);
+    const bool finite = std::isfinite(point.x) && std::isfinite(point.y) && std::isfinite(point.z);
+    const double limit = epsilon;
+    for (uint32_t i = leafSolidStart_[size_t(leafNum)]; i < leafSolidStart_[size_t(leafNum) + 1]; ++i) {
+        const LeafSolid& solid = leafSolids_[i];
         bool inside = true;
-        for (int s = 0; s < brush.numSides && inside; ++s) {
-            const bsp::BrushSide& side = bsp_.brushSides[brush.firstSide + s];
-            if (planeDistance(bsp_.planes[side.planeNum], point) > epsilon) inside = false;
+        for (uint32_t k = solid.firstPlane; k < solid.firstPlane + solid.numPlanes && inside; ++k) {
+            const SidePlane& s = solidPlanes_[k];
+            const double d = finite && s.axis < 6 ? p.v[s.axis] - double(s.dist)
+                                                  : double(s.normal[0]) * p.v[0] + double(s.normal[1]) * p.v[1] +
+                                                        double(s.normal[2]) * p.v[2] - double(s.dist);
+            if (d > limit) inside = false;
         }
-        if (inside) return -1 - b;
+        if (inside) return -1 - solid.brush;
     }
-    return leaf.cluster;
+    return cluster;
 }
 
 std::vector<Vec3> nudgeOffsets(float radius, float step) {
@@ -481,21 +522,35 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, float radius, float ste
     return nudgeOutOfSolid(point, nudgeOffsets(radius, step), epsilon);
 }
 
+BspTree::OffsetBox BspTree::offsetBox(std::span<const Vec3> offsets) {
+    OffsetBox box;
+    box.finite = !offsets.empty();
+    for (size_t i = 0; i < offsets.size(); ++i) {
+        const Vec3 o = offsets[i];
+        if (!std::isfinite(o.x) || !std::isfinite(o.y) || !std::isfinite(o.z)) box.finite = false;
+        box.lo = i == 0 ? o : vmin(box.lo, o);
+        box.hi = i == 0 ? o : vmax(box.hi, o);
+    }
+    return box;
+}
+
 std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon) const {
+    return nudgeOutOfSolid(point, offsets, offsetBox(offsets), epsilon);
+}
+
+std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, const OffsetBox& box,
+                                             float epsilon) const {
     // The candidates' box: while it lies wholly beyond 0.1 of a node plane on one side, every
     // candidate's walk takes that side, so all walks can start below. The margin covers the
     // rounding of box-corner distances against per-point ones many times over.
     int32_t start = 0;
-    bool boxed = !compact_.empty() && offsets.size() > 1;
+    const Vec3 boxLo = point + box.lo, boxHi = point + box.hi;
+    bool boxed = !compact_.empty() && offsets.size() > 1 && box.finite;
     float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (size_t i = 0; i < offsets.size() && boxed; ++i) {
-        const Vec3 c = point + offsets[i];
-        const float v[3] = {c.x, c.y, c.z};
-        for (int k = 0; k < 3; ++k) {
-            if (!std::isfinite(v[k])) boxed = false;
-            lo[k] = i == 0 ? v[k] : std::min(lo[k], v[k]);
-            hi[k] = i == 0 ? v[k] : std::max(hi[k], v[k]);
-        }
+    for (int k = 0; k < 3 && boxed; ++k) {
+        if (!std::isfinite(boxLo[k]) || !std::isfinite(boxHi[k])) boxed = false;
+        lo[k] = boxLo[k];
+        hi[k] = boxHi[k];
     }
     // Which children every candidate's walk can take at a node: 0 front, 1 back, 2 either.
     auto boxSide = [&](const CompactNode& n) {

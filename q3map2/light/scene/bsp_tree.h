@@ -88,6 +88,15 @@ public:
     std::optional<Vec3> nudgeOutOfSolid(Vec3 point, float radius, float step, float epsilon = 0.0f) const;
     // The same search over offsets computed once with nudgeOffsets() (for many points).
     std::optional<Vec3> nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, float epsilon = 0.0f) const;
+    // The box of a set of offsets, so that searches of many points over one set need not take it
+    // again (the candidates' box is the point plus it, bit for bit: float addition is monotonic).
+    struct OffsetBox {
+        Vec3 lo, hi;
+        bool finite = false;
+    };
+    static OffsetBox offsetBox(std::span<const Vec3> offsets);
+    std::optional<Vec3> nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, const OffsetBox& box,
+                                        float epsilon = 0.0f) const;
 
     // Whether the compact walks are in use (the node tree is a proper tree of bounded depth).
     bool usesCompactTree() const { return !compact_.empty(); }
@@ -115,6 +124,7 @@ private:
     static constexpr int kMaxCompactDepth = 256;  // walk stacks are fixed arrays of this size
 
     void buildCompactTree();
+    void buildLeafSolids();
     int compactLeafFrom(int node, Vec3 point) const;
     int clusterInLeaf(int leafNum, Vec3 point, float epsilon) const;
 
@@ -126,6 +136,20 @@ private:
     std::vector<CompactNode> segmentTree_;  // empty: segmentRoot_ is a sentinel
     int32_t segmentRoot_ = kOpenSubtree;
     std::vector<int32_t> leafCluster_;  // per leaf, for the compact walks
+    // The opaque brushes listed in each leaf with their side planes inline, in the leaf's order, for
+    // clusterInLeaf's point-in-brush tests without chasing leaf brush, brush and side indices.
+    struct SidePlane {
+        float normal[3];
+        float dist;
+        int32_t axis;  // as CompactNode::axis: 0..5 for a plane along an axis, 6 otherwise
+    };
+    struct LeafSolid {
+        int32_t brush;
+        uint32_t firstPlane, numPlanes;  // in solidPlanes_
+    };
+    std::vector<uint32_t> leafSolidStart_;  // per leaf + 1: its range of leafSolids_
+    std::vector<LeafSolid> leafSolids_;
+    std::vector<SidePlane> solidPlanes_;
 };
 
 // The fixed offsets tried by nudgeOutOfSolid: every lattice point k*step (|k| <= radius/step per

@@ -1,0 +1,114 @@
+// Shaders of the -bsp samples. Texture sizes are given with q3map_textureSize, so the samples
+// need no images and their texture coordinates do not depend on any game data.
+
+textures/samples/wall
+{
+	q3map_textureSize 128 128
+}
+
+textures/samples/floor
+{
+	q3map_textureSize 64 64
+}
+
+textures/samples/trim
+{
+	q3map_textureSize 256 32
+}
+
+textures/samples/sky
+{
+	q3map_textureSize 128 128
+	surfaceparm sky
+	surfaceparm noimpact
+	surfaceparm nolightmap
+	q3map_sun 1 1 1 100 45 60
+	q3map_surfacelight 50
+}
+
+textures/samples/water
+{
+	q3map_textureSize 64 64
+	surfaceparm trans
+	surfaceparm nonsolid
+	surfaceparm water
+	surfaceparm nolightmap
+}
+
+textures/samples/fog
+{
+	q3map_textureSize 64 64
+	surfaceparm trans
+	surfaceparm nonsolid
+	surfaceparm fog
+	surfaceparm nolightmap
+	fogparms ( 0.5 0.5 0.6 ) 512
+}
+
+textures/samples/lava
+{
+	q3map_textureSize 64 64
+	tessSize 64
+	surfaceparm trans
+	surfaceparm nonsolid
+	surfaceparm lava
+	surfaceparm nolightmap
+}
+
+textures/common/caulk
+{
+	surfaceparm nodraw
+	surfaceparm nolightmap
+	surfaceparm nomarks
+}
+
+textures/common/hint
+{
+	surfaceparm nodraw
+	surfaceparm nonsolid
+	surfaceparm structural
+	surfaceparm trans
+	surfaceparm noimpact
+	surfaceparm hint
+}
+
+textures/common/skip
+{
+	surfaceparm nodraw
+	surfaceparm nonsolid
+	surfaceparm structural
+	surfaceparm trans
+	surfaceparm noimpact
+	surfaceparm skip
+}
+
+textures/common/areaportal
+{
+	surfaceparm nodraw
+	surfaceparm nolightmap
+	surfaceparm nonsolid
+	surfaceparm structural
+	surfaceparm trans
+	surfaceparm nomarks
+	surfaceparm areaportal
+}
+
+textures/common/origin
+{
+	surfaceparm nodraw
+	surfaceparm nolightmap
+	surfaceparm nonsolid
+	surfaceparm trans
+	surfaceparm origin
+}
+
+textures/common/clip
+{
+	surfaceparm nodraw
+	surfaceparm nolightmap
+	surfaceparm nonsolid
+	surfaceparm trans
+	surfaceparm nomarks
+	surfaceparm noimpact
+	surfaceparm playerclip
+}

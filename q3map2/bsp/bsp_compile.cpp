@@ -1,0 +1,210 @@
+#include "bsp_compile.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "autocaulk.h"
+#include "brush_filter.h"
+#include "count_line.h"
+#include "debug_portals.h"
+#include "face_subdivide.h"
+#include "fog_hull.h"
+#include "fog_volumes.h"
+#include "log.h"
+#include "max_area_triangles.h"
+#include "model_surfaces.h"
+#include "patch_surfaces.h"
+#include "script.h"
+#include "shader_info.h"
+#include "srf_writer.h"
+#include "structure_emit.h"
+#include "surface_filter.h"
+#include "surface_triangles.h"
+#include "tjunctions.h"
+#include "visible_hull.h"
+
+namespace q3::bspstage {
+namespace {
+
+
+struct ModelContext {
+    const CompileInputs& in;
+    const BspCompileOptions& options;
+    const FaceContext& faces;
+    const std::vector<EntitySurfaceParams>& params;
+    const MapFogs& fogs;
+    BspBuilder& builder;
+    std::vector<int>& brushOutputs;
+    std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
+    LibcRandom& random;  // -maxarea retries, drawn in surface order
+    Log& log;
+};
+
+// The steps both kinds of model share once their faces exist: tessellation, classification,
+// filtering into the tree and writing (q3map2 SubdivideFaceSurfaces ... FilterDrawsurfsIntoTree,
+// FixBrushSides, EndModel).
+void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& surfaces, Tree& tree) {
+    const BspEntity& entity = c.in.map.entities[entityIndex];
+    if (c.options.subdivide) subdivideFaceSurfaces(surfaces, entity, c.faces, c.params);
+    if (c.options.tjunctions) {
+        c.log.debug("--- FixTJunctions ---");
+        const TJunctionCounts t = fixTJunctions(surfaces);
+        c.log.debug(countLine(t.axialLines, "axial edge lines"));
+        c.log.debug(countLine(t.nonAxialLines, "non-axial edge lines"));
+        c.log.debug(countLine(t.degenerateEdges, "degenerate edges"));
+        c.log.debug(countLine(t.addedVerts, "verts added for T-junctions"));
+        c.log.debug(countLine(t.totalVerts, "total verts"));
+        c.log.debug(countLine(t.natural, "naturally ordered"));
+        c.log.debug(countLine(t.rotated, "rotated orders"));
+        c.log.debug(countLine(t.cantOrder, "can't order"));
+        c.log.debug(countLine(t.broken, "broken (degenerate) surfaces removed"));
+    }
+    c.log.debug("--- ClassifyEntitySurfaces ---");
+    for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
+    c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (c.options.debugPortals && entityIndex == 0) {
+        c.log.debug("--- MakeDebugPortalSurfs ---");
+        for (DrawSurface& ds : debugPortalSurfaces(tree, c.in.map.planes, c.in.shaders)) surfaces.push_back(std::move(ds));
+    }
+    if (entityIndex == 0)
+        if (std::optional<DrawSurface> hull =
+                fogHullSurface(entity.source->value("_foghull"), c.in.map.worldBounds, c.in.shaders))
+            surfaces.push_back(std::move(*hull));
+    if (c.options.flares && entityIndex == 0)
+        for (DrawSurface& f : lightFlares(c.in.file, c.in.shaders)) surfaces.push_back(std::move(f));
+    if (int(c.written.size() + surfaces.size()) > c.options.maxDrawSurfaces)
+        throw CompileError("max_map_draw_surfs (" + std::to_string(c.options.maxDrawSurfaces) +
+                           ") exceeded, consider -maxmapdrawsurfs to increase");
+
+    c.log.debug("--- FilterDrawsurfsIntoTree ---");
+    TriangulationCounts triangles;
+    int references = 0, emitted = 0;
+    const FlareColors noColors;
+    // Surface flares are appended while the list is walked, and filtered after the others.
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
+        if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
+        if (c.options.flares)
+            if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
+                                                            c.in.flareColors ? *c.in.flareColors : noColors))
+                surfaces.push_back(std::move(*f));
+        DrawSurface& ds = surfaces[i];
+        if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
+        biasSurfaceTextures(ds);
+        if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare && !shaderOnly) {
+            DBounds bounds;
+            for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
+            ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);
+        }
+        // A shader-only surface is written without being referenced by any leaf.
+        const int refs = shaderOnly ? 1 : filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
+        if (refs == 0) continue;
+        if (ds.kind == SurfaceKind::Face) {
+            if (c.options.maxArea)
+                triangulateFaceByMaxArea(ds, c.random, &triangles);
+            else
+                triangulateFace(ds, &triangles);
+            classifySurface(ds, c.in.map.planes, c.options.classify);
+        }
+        c.builder.emitSurface(ds, c.options.emit);
+        references += refs;
+        ++emitted;
+        c.written.push_back(std::make_unique<DrawSurface>(ds));
+    }
+    c.log.debug(countLine(references, "references"));
+    c.log.debug(countLine(emitted, "emitted drawsurfs"));
+    c.log.debug(countLine(triangles.strips, "stripped face surfaces"));
+    c.log.debug(countLine(triangles.fans, "fanned face surfaces"));
+    if (c.options.maxArea) c.log.debug(countLine(triangles.maxArea, "maxarea'd face surfaces"));
+    c.builder.fixBrushSides(surfaces);
+    c.builder.endModel(tree);
+}
+
+}  // namespace
+
+CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options, Log& log) {
+    CompiledBsp out;
+    LoadedMap& map = in.map;
+    // q3map2 would write a BSP without a world model, which no engine loads.
+    if (map.entities.front().brushes.empty() && map.entities.front().patches.empty())
+        throw CompileError(in.file.name + ": the world has no brushes or patches, nothing to compile");
+    const std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
+    std::vector<std::unique_ptr<DrawSurface>> written;
+    const FaceContext faces{map.planes, in.textures, options.brushSnap, options.skyFix ? &in.shaders : nullptr,
+                            &written};
+    BspBuilder builder(map, in.shaders);
+    MapFogs fogs;
+    if (options.fog) {
+        log.debug("--- CreateMapFogs ---");
+        fogs = createMapFogs(map, in.shaders, log);
+    }
+    std::vector<int> brushOutputs(map.entities.size(), -1);
+    LibcRandom random;
+    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
+
+    for (size_t i = 0; i < map.entities.size(); ++i) {
+        BspEntity& e = map.entities[i];
+        if (e.brushes.empty() && e.patches.empty()) continue;
+        log.debug("############### model " + std::to_string(builder.bsp().models.size()) + " ###############");
+        builder.beginModel(e);
+        PatchCounts patchCounts;
+        std::vector<DrawSurface> surfaces = patchSurfaces(e, in.shaders, map.planes, params, log, &patchCounts);
+        log.debug(countLine(patchCounts.patches, "patches"));
+        log.debug(countLine(patchCounts.lodGroups, "patch LOD groups"));
+        if (i == 0) {
+            out.world = buildWorldStructure(map, options.world, log);
+            if (out.world.stoppedForLeakTest) {
+                out.stoppedForLeakTest = true;
+                return out;
+            }
+            // Without an entity in open space q3map2 never clips the sides: the world has no faces.
+            if (options.autocaulk && out.world.flood != FloodResult::Empty) {
+                out.autocaulk = autocaulkText(e.brushes, in.shaders);
+                out.stoppedForAutocaulk = true;
+                return out;
+            }
+            if (out.world.flood != FloodResult::Empty) {
+                const CullCounts culled = cullSides(e.brushes, map.planes);
+                log.debug(countLine(culled.hidden, "hidden faces culled"));
+                log.debug(countLine(culled.coincident, "coincident faces culled"));
+                addFaceSurfaces(e, faces, params, surfaces);
+            }
+            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces, log);
+            builder.emitBrushes(e.brushes);
+            brushOutputs[i] = builder.brushOutput(0);
+            filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
+            if (options.fog) {
+                const FogCounts fogged = fogWorldSurfaces(surfaces, fogs, map, faces, params);
+                log.debug(countLine(fogged.faceFragments, "fog polygon fragments"));
+                log.debug(countLine(fogged.patchFragments, "fog patch fragments"));
+                log.debug(countLine(fogged.fogged, "fogged drawsurfs"));
+            }
+            finishModel(c, i, surfaces, out.world.tree);
+        } else {
+            const bool verbose = log.verbose();
+            if (!options.verboseEntities) log.setVerbose(false);
+            Tree tree = singleLeafTree(e);
+            cullSides(e.brushes, map.planes);
+            clipSidesIntoTree(e.brushes, tree, map.planes);
+            addFaceSurfaces(e, faces, params, surfaces);
+            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces,
+                             log);
+            builder.emitBrushes(e.brushes);
+            brushOutputs[i] = builder.brushOutput(0);
+            finishModel(c, i, surfaces, tree);
+            log.setVerbose(verbose);
+        }
+    }
+    log.debug(countLine(int(builder.bsp().models.size()), "bspModels in total"));
+    emitFogs(fogs, map, brushOutputs, builder, log);
+    builder.emitPlanes(map.planes);
+    builder.bsp().entities = bsp::unparseEntities(bspEntities(map, options.entities));
+
+    std::vector<const DrawSurface*> order;
+    for (const auto& ds : written) order.push_back(ds.get());
+    out.surfaceExtra = surfaceExtraText(order, options.classify.sampleSize, map);
+    out.bsp = std::move(builder.bsp());
+    return out;
+}
+
+}  // namespace q3::bspstage

@@ -1,0 +1,17 @@
+// Which leaves draw a surface (q3map2 surface.cpp FilterDrawsurfsIntoTree's filtering): faces by
+// clipping their winding down the tree, patches by the convex hull of points that bound every
+// level of detail, triangle surfaces by each triangle and each vertex, flares by their origin.
+// Only open (non-opaque) leaves take references.
+#pragma once
+
+#include "bsp_tree.h"
+#include "draw_surface.h"
+#include "plane_set.h"
+
+namespace q3::bspstage {
+
+// Adds `outputNum` to the drawSurfaces of every open leaf the surface touches (once per leaf);
+// returns the number of references added. A surface with none is not written.
+int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& planes, int outputNum);
+
+}  // namespace q3::bspstage

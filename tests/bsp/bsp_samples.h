@@ -1,0 +1,23 @@
+// The -bsp samples (bsp-samples/samples/maps/*.map, with their own shaders) and their golden
+// outputs (bsp-samples/golden/): compiling one the way the golden files were made, for the
+// regression test and for the tool that regenerates the goldens.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace q3::bspstage::test {
+
+std::filesystem::path samplesRoot();  // bsp-samples/
+std::filesystem::path goldenDir();    // bsp-samples/golden/
+std::vector<std::string> sampleNames();
+
+// The files a compile of a sample writes: .bsp, .srf, and .prt or .lin.
+std::vector<std::string> sampleOutputExtensions(const std::filesystem::path& dir, const std::string& name);
+
+// Copies the sample game folder under `work` and runs -bsp on the sample there (quiet); returns the
+// folder holding the outputs. Throws what the stage throws.
+std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work);
+
+}  // namespace q3::bspstage::test
