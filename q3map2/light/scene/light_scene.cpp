@@ -188,8 +188,12 @@ void buildScene(LightContext& ctx) {
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
     options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullClearOfSolid(points); };
     // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
-    // beside it is stopped (trace_pieces.h).
-    ctx.scene = std::make_unique<TraceScene>(traceCasterPieces(ctx.surfaces, ctx.bsp, options), options);
+    // beside it is stopped (trace_pieces.h). Sun rays meet solid where its walk does.
+    TraceLeafContents contents;
+    std::vector<SceneSurface> pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents);
+    auto skySolid = std::make_shared<const SkyRaySolid>(ctx.bsp, contents);
+    options.skySolidBetween = [skySolid](Vec3 from, Vec3 to) { return skySolid->stops(from, to); };
+    ctx.scene = std::make_unique<TraceScene>(pieces, options);
 }
 
 void createLights(LightContext& ctx, Log& log) {

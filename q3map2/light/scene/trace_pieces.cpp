@@ -121,16 +121,17 @@ void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float pl
     }
 }
 
-// q3map2 SubdivideTraceNode_r on one leaf: while it holds enough triangles and is wide enough,
-// split it at the (floored) mean corner along its longest side; `emit` gets the final windings.
-template <typename Emit>
-void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
-    if (windings.empty()) return;
-    if (depth >= kMaxTraceDepth) {
-        for (Winding& w : windings) emit(std::move(w));
-        return;
-    }
-    ++depth;
+// Where q3map2's SubdivideTraceNode_r splits a leaf holding `windings` at `depth`: along its
+// longest side at the (floored) mean corner, when it holds enough triangles and is wide enough.
+struct LeafSplit {
+    bool split = false;
+    int axis = 0;
+    float dist = 0;
+};
+
+LeafSplit leafSplit(const std::vector<Winding>& windings, int depth) {
+    LeafSplit s;
+    if (windings.empty() || depth >= kMaxTraceDepth) return s;
     Bounds bounds;
     double average[3] = {0, 0, 0};
     int count = 0;
@@ -141,26 +142,36 @@ void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
             ++count;
         }
     const Vec3 size = bounds.maxs - bounds.mins;
-    const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.x && size.y >= size.z ? 1 : 2;
-    if (count - int(windings.size()) * 2 < kMaxLeafTriangles || size[axis] <= kMinSplitSize) {
+    s.axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.x && size.y >= size.z ? 1 : 2;
+    if (count - int(windings.size()) * 2 < kMaxLeafTriangles || size[s.axis] <= kMinSplitSize) return s;
+    s.split = true;
+    s.dist = float(std::floor(average[s.axis] / count));
+    if (s.dist <= bounds.mins[s.axis] || s.dist >= bounds.maxs[s.axis])
+        s.dist = std::floor(0.5f * (bounds.mins[s.axis] + bounds.maxs[s.axis]));
+    return s;
+}
+
+// q3map2 SubdivideTraceNode_r on one leaf: split while leafSplit says so; `emit` gets the final
+// windings.
+template <typename Emit>
+void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
+    const LeafSplit split = leafSplit(windings, depth);
+    if (!split.split) {
         for (Winding& w : windings) emit(std::move(w));
         return;
     }
-    float dist = float(std::floor(average[axis] / count));
-    if (dist <= bounds.mins[axis] || dist >= bounds.maxs[axis])
-        dist = std::floor(0.5f * (bounds.mins[axis] + bounds.maxs[axis]));
     Vec3 normal;
-    normal[axis] = 1.0f;
+    normal[split.axis] = 1.0f;
     std::vector<Winding> fronts, backs;
     for (const Winding& w : windings) {
         Winding front, back;
-        clipWinding(w, normal, dist, front, back);
+        clipWinding(w, normal, split.dist, front, back);
         if (front.v.size() >= 3) fronts.push_back(std::move(front));
         if (back.v.size() >= 3) backs.push_back(std::move(back));
     }
     windings.clear();
-    subdivideLeaf(std::move(fronts), depth, emit);
-    subdivideLeaf(std::move(backs), depth, emit);
+    subdivideLeaf(std::move(fronts), depth + 1, emit);
+    subdivideLeaf(std::move(backs), depth + 1, emit);
 }
 
 // Appends the fan of a winding to `out`, each triangle grown by the barycentric slack unless
@@ -189,7 +200,7 @@ void appendPieces(const Winding& w, bool exact, SceneSurface& out) {
 }  // namespace
 
 std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
-                                            const TraceSceneOptions& options) {
+                                            const TraceSceneOptions& options, TraceLeafContents* contents) {
     std::vector<SceneSurface> out(surfaces.size());
     std::vector<Winding> direct;  // without a tree: the triangles themselves
     std::vector<Leaf> leaves(bsp.nodes.empty() ? 0 : bsp.leafs.size());
@@ -238,6 +249,14 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
         appendPieces(w, exact, out[w.surface]);
     };
     for (Winding& w : direct) emit(std::move(w));
+    if (contents) {
+        contents->holdsPieces.assign(leaves.size(), 0);
+        contents->subdivided.assign(leaves.size(), 0);
+        for (size_t l = 0; l < leaves.size(); ++l) {
+            contents->holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
+            contents->subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
+        }
+    }
     for (Leaf& leaf : leaves) subdivideLeaf(std::move(leaf.windings), leaf.depth, emit);
     return out;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bspfile.h"
+#include "sky_ray_solid.h"
 #include "trace_scene.h"
 
 namespace q3::light {
@@ -24,8 +25,8 @@ constexpr float kTraceCoplanarEpsilon = 0.25f;
 // `surfaces` with the triangles of every caster replaced by its trace pieces, each grown by the
 // barycentric slack (filtering surfaces keep their exact pieces: q3map2 reads their texture only
 // inside the triangle). Surfaces that cast nothing are returned unchanged. Without BSP nodes the
-// triangles are only grown.
+// triangles are only grown. `contents`, when given, receives what each BSP leaf holds.
 std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
-                                            const TraceSceneOptions& options);
+                                            const TraceSceneOptions& options, TraceLeafContents* contents = nullptr);
 
 }  // namespace q3::light

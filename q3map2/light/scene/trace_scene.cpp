@@ -176,6 +176,7 @@ bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOption
 TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
     : embree_(std::make_unique<EmbreeState>()),
       solidBetween_(options.solidBetween),
+      skySolidBetween_(options.skySolidBetween),
       hullClearOfSolid_(options.hullClearOfSolid) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
@@ -332,7 +333,9 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
     // Open rays still stop at structural solid: sun rays up to their sky, the others to their end.
-    if (!r.clearOfSolid && crossesSolid(r.from, r.from + r.direction * (r.toSky ? tfar : r.tfar))) return {};
+    if (!r.clearOfSolid && (r.toSky ? skyRayCrossesSolid(r.from, r.from + r.direction * tfar)
+                                    : crossesSolid(r.from, r.from + r.direction * r.tfar)))
+        return {};
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
 }
 
@@ -466,7 +469,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
         if (occlusionBuffer[k].tfar < 0) continue;
         const ShadowRay& r = rays[occlusionBuffer[k].id];
         if (!r.clearOfSolid && !(r.toSky ? skyClear : pointClear) &&
-            crossesSolid(r.from, segmentEnd(k)))
+            (r.toSky ? skyRayCrossesSolid(r.from, segmentEnd(k)) : crossesSolid(r.from, segmentEnd(k))))
             continue;
         out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
     }

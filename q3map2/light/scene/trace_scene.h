@@ -47,6 +47,9 @@ struct TraceSceneOptions {
     // whatever the inhibit radius: a ray grazing up a wall that a vertex lies on stays in the dark,
     // and so does the light behind the wall. Empty: no test.
     std::function<bool(Vec3 from, Vec3 to)> solidBetween;
+    // The same test for sun rays, up to their sky (q3map2 walks them otherwise: sky_ray_solid.h).
+    // Empty: solidBetween.
+    std::function<bool(Vec3 from, Vec3 to)> skySolidBetween;
     // Optional shortcut for many rays: true when no segment inside the convex hull of the points
     // (at most BspTree::kMaxHullPoints) can enter solid, so solidBetween need not be asked for them.
     std::function<bool(std::span<const Vec3> points)> hullClearOfSolid;
@@ -94,6 +97,10 @@ public:
 
     // TraceSceneOptions::solidBetween (false without one).
     bool crossesSolid(Vec3 from, Vec3 to) const { return solidBetween_ && solidBetween_(from, to); }
+    // TraceSceneOptions::skySolidBetween, or crossesSolid without one.
+    bool skyRayCrossesSolid(Vec3 from, Vec3 to) const {
+        return skySolidBetween_ ? skySolidBetween_(from, to) : crossesSolid(from, to);
+    }
 
     // Ray mask of a receiver in shadow group `receiveShadows`, with q3map2's rules: group 1 (the
     // world) is shadowed by casters of group 1 only; a group above 1 by group 1 and its own casters;
@@ -147,6 +154,7 @@ private:
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
     std::function<bool(Vec3, Vec3)> solidBetween_;
+    std::function<bool(Vec3, Vec3)> skySolidBetween_;
     std::function<bool(std::span<const Vec3>)> hullClearOfSolid_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
