@@ -25,20 +25,28 @@ std::string brushLabel(const Brush& b) {
 }
 
 // Sides whose plane cannot be built are dropped, a repeated plane keeps its first side, and two
-// opposite planes make the whole brush invalid (returns false).
+// opposite planes make the whole brush invalid (returns false). Each case is reported as q3map2
+// reports it (on its warning stream).
 bool removeDuplicatePlanes(Brush& b, Log& log) {
-    std::erase_if(b.sides, [](const BrushSide& s) { return s.planeNum < 0; });
-    for (size_t i = 0; i < b.sides.size(); ++i) {
-        for (size_t j = i + 1; j < b.sides.size();) {
+    for (size_t i = 0; i < b.sides.size();) {
+        bool removed = false;
+        if (b.sides[i].planeNum < 0) {
+            log.warning(brushLabel(b) + ": degenerate plane");
+            removed = true;
+        }
+        for (size_t j = 0; j < i && !removed; ++j) {
             if (b.sides[i].planeNum == b.sides[j].planeNum) {
-                b.sides.erase(b.sides.begin() + std::ptrdiff_t(j));
+                log.warning(brushLabel(b) + ": duplicate plane");
+                removed = true;
             } else if (b.sides[i].planeNum == (b.sides[j].planeNum ^ 1)) {
-                log.debug(brushLabel(b) + ": mirrored plane");
+                log.warning(brushLabel(b) + ": mirrored plane");
                 return false;
-            } else {
-                ++j;
             }
         }
+        if (removed)
+            b.sides.erase(b.sides.begin() + std::ptrdiff_t(i));
+        else
+            ++i;
     }
     return true;
 }

@@ -113,6 +113,13 @@ void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const Sh
     log.info("Writing " + bspPath.string());
 }
 
+// A compile error names the map it stopped on; the steps' own messages name only what failed.
+[[noreturn]] void rethrowNamingMap(const CompileError& e, const fs::path& map) {
+    const std::string message = e.what();
+    if (message.find(map.string()) != std::string::npos) throw e;
+    throw CompileError(map.string() + ": " + message);
+}
+
 }  // namespace
 
 int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log) {
@@ -176,8 +183,12 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
     FlareColors flareColors;
     if (options.flares) flareColors = FlareColors::load(flareShaders(map, shaders), &vfs, log);
-    CompiledBsp compiled =
-        compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
+    CompiledBsp compiled;
+    try {
+        compiled = compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
+    } catch (const CompileError& e) {
+        rethrowNamingMap(e, source);
+    }
 
     if (compiled.stoppedForAutocaulk) {
         // q3map2 stops before the portal file: only a leak line, if any, and the .caulk.
