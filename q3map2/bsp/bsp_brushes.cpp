@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "feedback_log.h"
 #include "log.h"
 #include "model_numbers.h"
 #include "script.h"
@@ -27,19 +28,20 @@ std::string brushLabel(const Brush& b) {
 // Sides whose plane cannot be built are dropped, a repeated plane keeps its first side, and two
 // opposite planes make the whole brush invalid (returns false). Each case is reported as q3map2
 // reports it (on its warning stream).
-bool removeDuplicatePlanes(Brush& b, Log& log) {
+bool removeDuplicatePlanes(Brush& b, FeedbackStream* feedback, Log& log) {
+    auto report = [&](std::string_view problem) { reportBrushProblem(log, feedback, b.mapEntityNum, b.brushNum, problem, false); };
     for (size_t i = 0; i < b.sides.size();) {
         bool removed = false;
         if (b.sides[i].planeNum < 0) {
-            log.warning(brushLabel(b) + ": degenerate plane");
+            report("degenerate plane");
             removed = true;
         }
         for (size_t j = 0; j < i && !removed; ++j) {
             if (b.sides[i].planeNum == b.sides[j].planeNum) {
-                log.warning(brushLabel(b) + ": duplicate plane");
+                report("duplicate plane");
                 removed = true;
             } else if (b.sides[i].planeNum == (b.sides[j].planeNum ^ 1)) {
-                log.warning(brushLabel(b) + ": mirrored plane");
+                report("mirrored plane");
                 return false;
             }
         }
@@ -222,7 +224,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         for (const map::MapBrush& mb : source.brushes) {
             lookUpPatchShadersBefore(mb.primitiveNum);
             Brush b = brushFromMap(mb, source.number, shaders, out);
-            if (!removeDuplicatePlanes(b, log)) continue;
+            if (!removeDuplicatePlanes(b, options.feedback, log)) continue;
             setBrushContents(b, options.fullDetail, log);
             if (options.noDetail && (b.compileFlags & compileflags::Detail)) continue;
             if (options.noWater && (b.compileFlags & compileflags::Liquid)) continue;

@@ -122,7 +122,7 @@ void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const Sh
 
 }  // namespace
 
-int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log) {
+int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log, FeedbackStream* feedback) {
     const auto start = std::chrono::steady_clock::now();
     fs::path bspPath = common.mapPath;
     bspPath.replace_extension(".bsp");
@@ -169,6 +169,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     load.flagRules = options.flagRules;
     load.bevelSnap = options.bevelSnap;
     load.keepGroups = options.autocaulk;
+    load.feedback = feedback;
     LoadedMap map = loadMapForBsp(file, shaders, load, log);
     log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");
@@ -185,7 +186,9 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     if (options.flares) flareColors = FlareColors::load(flareShaders(map, shaders), &vfs, log);
     CompiledBsp compiled;
     try {
-        compiled = compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
+        BspCompileOptions compile = compileOptions(options, common);
+        compile.world.feedback = feedback;
+        compiled = compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compile, log);
     } catch (const CompileError& e) {
         rethrowNamingMap(e, source);
     }
