@@ -101,7 +101,7 @@ Options parseStageOptions(const q3::cli::OptionTable<Options>& table, const q3::
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
              const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
-             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image);
+             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image, q3::FeedbackStream* feedback);
 
 // `common` and `feedback` live in main so that a failure can still reach NetRadiant.
 int run(const std::vector<std::string>& rawArgs, q3::Log& log, q3::CommonOptions& common,
@@ -132,7 +132,7 @@ int run(const std::vector<std::string>& rawArgs, q3::Log& log, q3::CommonOptions
 
     auto start = std::chrono::steady_clock::now();
     q3::RunStats stats;
-    int status = runStage(line, common, stages, log, stats, probe, image);
+    int status = runStage(line, common, stages, log, stats, probe, image, feedback.get());
     if (status == 0 && common.warningsAsErrors && log.warningCount() > 0) {
         log.error(std::to_string(log.warningCount()) + " warning(s) with -werror");
         status = 1;
@@ -150,11 +150,11 @@ int run(const std::vector<std::string>& rawArgs, q3::Log& log, q3::CommonOptions
 
 int runStage(const q3::cli::CommandLine& line, const q3::CommonOptions& common,
              const std::vector<q3::cli::StageDescription>& stages, q3::Log& log, q3::RunStats& stats,
-             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image) {
+             q3::shtools::ShProbeOptions probe, q3::shtools::ShImageOptions image, q3::FeedbackStream* feedback) {
     // Each stage checks all of its options before any work starts.
     if (line.stage == "-bsp") {
         auto options = parseStageOptions(q3::bspstage::bspOptionTable(), line, stages);
-        return q3::bspstage::runBspStage(options, common, log);
+        return q3::bspstage::runBspStage(options, common, log, feedback);
     }
     if (line.stage == "-info") {
         auto options = parseStageOptions(q3::info::infoOptionTable(), line, stages);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "feedback_log.h"
 #include "log.h"
 #include "model_numbers.h"
 #include "script.h"
@@ -25,20 +26,29 @@ std::string brushLabel(const Brush& b) {
 }
 
 // Sides whose plane cannot be built are dropped, a repeated plane keeps its first side, and two
-// opposite planes make the whole brush invalid (returns false).
-bool removeDuplicatePlanes(Brush& b, Log& log) {
-    std::erase_if(b.sides, [](const BrushSide& s) { return s.planeNum < 0; });
-    for (size_t i = 0; i < b.sides.size(); ++i) {
-        for (size_t j = i + 1; j < b.sides.size();) {
+// opposite planes make the whole brush invalid (returns false). Each case is reported as q3map2
+// reports it (on its warning stream).
+bool removeDuplicatePlanes(Brush& b, FeedbackStream* feedback, Log& log) {
+    auto report = [&](std::string_view problem) { reportBrushProblem(log, feedback, b.mapEntityNum, b.brushNum, problem, false); };
+    for (size_t i = 0; i < b.sides.size();) {
+        bool removed = false;
+        if (b.sides[i].planeNum < 0) {
+            report("degenerate plane");
+            removed = true;
+        }
+        for (size_t j = 0; j < i && !removed; ++j) {
             if (b.sides[i].planeNum == b.sides[j].planeNum) {
-                b.sides.erase(b.sides.begin() + std::ptrdiff_t(j));
+                report("duplicate plane");
+                removed = true;
             } else if (b.sides[i].planeNum == (b.sides[j].planeNum ^ 1)) {
-                log.debug(brushLabel(b) + ": mirrored plane");
+                report("mirrored plane");
                 return false;
-            } else {
-                ++j;
             }
         }
+        if (removed)
+            b.sides.erase(b.sides.begin() + std::ptrdiff_t(i));
+        else
+            ++i;
     }
     return true;
 }
@@ -214,7 +224,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         for (const map::MapBrush& mb : source.brushes) {
             lookUpPatchShadersBefore(mb.primitiveNum);
             Brush b = brushFromMap(mb, source.number, shaders, out);
-            if (!removeDuplicatePlanes(b, log)) continue;
+            if (!removeDuplicatePlanes(b, options.feedback, log)) continue;
             setBrushContents(b, options.fullDetail, log);
             if (options.noDetail && (b.compileFlags & compileflags::Detail)) continue;
             if (options.noWater && (b.compileFlags & compileflags::Liquid)) continue;

@@ -15,6 +15,7 @@
 #include "winding.h"
 
 namespace q3 {
+class FeedbackStream;
 class Log;
 class ShaderTable;
 struct ShaderInfo;
@@ -85,6 +86,7 @@ struct MapLoadOptions {
     // world's brush numbers are the editor's, and brushes get no bevels.
     bool keepGroups = false;
     bool resolveClones = true;  // off for -onlyents, which numbers clones like other models
+    FeedbackStream* feedback = nullptr;  // -connect: problem brushes go to the editor as selections
 };
 
 struct MapLoadCounts {

@@ -113,9 +113,16 @@ void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const Sh
     log.info("Writing " + bspPath.string());
 }
 
+// A compile error names the map it stopped on; the steps' own messages name only what failed.
+[[noreturn]] void rethrowNamingMap(const CompileError& e, const fs::path& map) {
+    const std::string message = e.what();
+    if (message.find(map.string()) != std::string::npos) throw e;
+    throw CompileError(map.string() + ": " + message);
+}
+
 }  // namespace
 
-int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log) {
+int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log, FeedbackStream* feedback) {
     const auto start = std::chrono::steady_clock::now();
     fs::path bspPath = common.mapPath;
     bspPath.replace_extension(".bsp");
@@ -162,6 +169,7 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     load.flagRules = options.flagRules;
     load.bevelSnap = options.bevelSnap;
     load.keepGroups = options.autocaulk;
+    load.feedback = feedback;
     LoadedMap map = loadMapForBsp(file, shaders, load, log);
     log.debug(std::to_string(map.counts.worldBrushes) + " total world brushes");
     log.debug(std::to_string(map.counts.detailBrushes) + " detail brushes");
@@ -176,8 +184,14 @@ int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log
     const TextureSizes textures = TextureSizes::load(brushSideShaders(map), vfs, log);
     FlareColors flareColors;
     if (options.flares) flareColors = FlareColors::load(flareShaders(map, shaders), &vfs, log);
-    CompiledBsp compiled =
-        compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compileOptions(options, common), log);
+    CompiledBsp compiled;
+    try {
+        BspCompileOptions compile = compileOptions(options, common);
+        compile.world.feedback = feedback;
+        compiled = compileBsp({map, file, shaders, textures, &vfs, &flareColors}, compile, log);
+    } catch (const CompileError& e) {
+        rethrowNamingMap(e, source);
+    }
 
     if (compiled.stoppedForAutocaulk) {
         // q3map2 stops before the portal file: only a leak line, if any, and the .caulk.

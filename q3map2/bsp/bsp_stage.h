@@ -7,12 +7,14 @@
 #include "common_options.h"
 
 namespace q3 {
+class FeedbackStream;
 class Log;
 }
 
 namespace q3::bspstage {
 
-// Returns the exit code; throws ScriptError, FileError, CompileError or bsp::BspError.
-int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log);
+// Returns the exit code; throws ScriptError, FileError, CompileError or bsp::BspError. With a
+// feedback stream (-connect) the leak line and problem brushes also go to the editor as geometry.
+int runBspStage(const BspOptions& options, const CommonOptions& common, Log& log, FeedbackStream* feedback = nullptr);
 
 }  // namespace q3::bspstage

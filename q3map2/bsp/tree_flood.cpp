@@ -93,9 +93,14 @@ FillCounts fillOutside(Tree& tree) {
     return counts;
 }
 
-std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entities, int* leakingEntity) {
+std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entities, int* leakingEntity,
+                         std::vector<Vec3>* points) {
     if (!tree.node(tree.outside).occupied) return {};
     std::string text;
+    auto add = [&](const DVec3& p) {
+        text += formatPoint(p);
+        if (points) points->push_back(p.toFloat());
+    };
     int n = tree.outside;
     while (tree.node(n).occupied > 1) {
         int best = tree.node(n).occupied, bestPortal = -1, bestNode = -1;
@@ -110,10 +115,10 @@ std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entitie
         });
         if (bestPortal < 0) break;  // cannot happen for a flooded leaf; guards against a loop
         n = bestNode;
-        text += formatPoint(windingCenter(tree.portal(bestPortal).winding));
+        add(windingCenter(tree.portal(bestPortal).winding));
     }
     const int occupant = tree.node(n).occupant;
-    if (occupant >= 0) text += formatPoint(entities[size_t(occupant)].origin);
+    if (occupant >= 0) add(entities[size_t(occupant)].origin);
     if (leakingEntity) *leakingEntity = occupant;
     return text;
 }

@@ -41,8 +41,10 @@ FillCounts fillOutside(Tree& tree);
 
 // The leak line: from the outside node, step by step to the neighbour closest to an entity,
 // printing each portal's centre, then the entity's origin ("%f %f %f" lines). Empty when the
-// outside was not reached. `leakingEntity` gets the entity index at the end of the line.
-std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entities, int* leakingEntity = nullptr);
+// outside was not reached. `leakingEntity` gets the entity index at the end of the line, `points`
+// the line's points (as printed, in 32-bit floats).
+std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entities, int* leakingEntity = nullptr,
+                         std::vector<Vec3>* points = nullptr);
 
 // Area numbers for open leaves (needs clusters: leaves with cluster -1 get none); every open leaf
 // of the last area holding a _skybox leaf becomes a _skybox leaf too. Returns the number of areas.

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "log.h"
 #include "shader_info.h"
 
 namespace q3::bspstage {
@@ -53,7 +54,7 @@ struct PortalBuilder {
         DBounds bounds = tree.bounds;
         bounds.mins -= DVec3::splat(kSideSpace);
         bounds.maxs += DVec3::splat(kSideSpace);
-        if (bounds.empty()) throw std::runtime_error("Backwards tree volume");
+        if (bounds.empty()) throw CompileError("Backwards tree volume");
         TreeNode outside;
         outside.cluster = 0;  // q3map2's outside node is zero-initialised; cluster tests compare with it
         tree.nodes.push_back(outside);

@@ -5,6 +5,7 @@
 
 #include "brush_filter.h"
 #include "count_line.h"
+#include "feedback_log.h"
 #include "file_io.h"
 #include "log.h"
 #include "script.h"
@@ -85,14 +86,19 @@ WorldStructure buildWorldStructure(LoadedMap& map, const WorldStructureOptions& 
     if (ignoreLeaks && out.flood == FloodResult::Leaked) out.flood = FloodResult::Good;
     out.leaked = out.flood != FloodResult::Good;
     if (out.leaked) {
-        // q3map2's banner; the compile goes on (the map is usable, only without vis).
-        log.info("**********************");
-        log.info("******* leaked *******");
-        log.info("**********************");
-        out.leakLine = leakLineText(tree, map.entities, &out.leakingEntity);
-        if (out.leakingEntity >= 0)
-            log.info("Entity " + std::to_string(map.entities[size_t(out.leakingEntity)].mapEntityNum) +
-                     ", Brush 0: Entity leaked");
+        // q3map2's banner (and, with -connect, the line to the editor); the compile goes on (the
+        // map is usable, only without vis).
+        std::vector<Vec3> points;
+        out.leakLine = leakLineText(tree, map.entities, &out.leakingEntity, &points);
+        reportLeak(log, options.feedback, points);
+        if (out.leakingEntity >= 0) {
+            const int entity = map.entities[size_t(out.leakingEntity)].mapEntityNum;
+            {
+                FeedbackEchoMute mute(options.feedback);
+                log.info("Entity " + std::to_string(entity) + ", Brush 0: Entity leaked");
+            }
+            if (options.feedback) options.feedback->brushSelect(entity, 0, "Entity leaked", false);
+        }
         if (options.leakTest) {
             log.warning("--- MAP LEAKED, ABORTING LEAKTEST ---");
             out.stoppedForLeakTest = true;

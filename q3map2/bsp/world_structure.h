@@ -16,6 +16,7 @@
 #include "tree_portals.h"
 
 namespace q3 {
+class FeedbackStream;
 class Log;
 }
 
@@ -25,6 +26,7 @@ struct WorldStructureOptions {
     bool deep = false;      // -deep: detail faces split the tree too (at low priority)
     bool leakTest = false;  // -leaktest: stop right after a leak is found
     bool alternateSplit = false;  // -altsplit: q3map2's alternative split plane score
+    FeedbackStream* feedback = nullptr;  // -connect: the leak line and the leaking entity go to the editor
 };
 
 struct TreePassCounts {

@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include "file_io.h"
 
 #include "tcp_listener.h"
 #include "test_data.h"
@@ -108,6 +111,86 @@ TEST(FeedbackExecutable, ListenerGoingAwayMidRunIsSaidOnceAndTheRunFinishes) {
     EXPECT_EQ(occurrences(console, "lost connection to NetRadiant; continuing"), 1u) << console;
     EXPECT_NE(console.find("seconds elapsed"), std::string::npos) << console;  // ran to the end
     EXPECT_NE(console.find("wrote "), std::string::npos) << console;
+}
+
+// Children of the document root named `name`: their text content and, for each, the texts of its
+// element children.
+struct Element {
+    std::string level, text;
+    std::vector<std::pair<std::string, std::string>> children;  // name, text
+};
+
+std::vector<Element> elementsOf(const std::string& xml, const char* name) {
+    std::vector<Element> out;
+    xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), "feedback.xml", nullptr,
+                                  XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    EXPECT_NE(doc, nullptr) << "not well-formed XML:\n" << xml;
+    if (!doc) return out;
+    auto text = [](xmlNodePtr node) {
+        xmlChar* t = xmlNodeGetContent(node);
+        std::string s = t ? reinterpret_cast<const char*>(t) : "";
+        xmlFree(t);
+        return s;
+    };
+    for (xmlNodePtr node = xmlDocGetRootElement(doc)->children; node; node = node->next) {
+        if (node->type != XML_ELEMENT_NODE || xmlStrcmp(node->name, BAD_CAST name) != 0) continue;
+        Element e;
+        xmlChar* level = xmlGetProp(node, BAD_CAST "level");
+        e.level = level ? reinterpret_cast<const char*>(level) : "";
+        xmlFree(level);
+        e.text = text(node);
+        for (xmlNodePtr child = node->children; child; child = child->next) {
+            if (child->type != XML_ELEMENT_NODE) continue;
+            if (xmlStrcmp(child->name, BAD_CAST "polyline") == 0) {
+                for (xmlNodePtr point = child->children; point; point = point->next)
+                    if (point->type == XML_ELEMENT_NODE) e.children.emplace_back("point", text(point));
+            } else {
+                e.children.emplace_back(reinterpret_cast<const char*>(child->name), text(child));
+            }
+        }
+        out.push_back(e);
+    }
+    xmlFreeDoc(doc);
+    return out;
+}
+
+// -bsp on a leaking map with a doubled plane: the editor gets the leak line (the .lin's points) as
+// a level-3 polyline, and selections of the leaking entity and of the brush.
+TEST(FeedbackExecutable, BspSendsTheLeakLineAndProblemBrushes) {
+    const fs::path dir = tempDir();
+    const std::string face = " base/wall 0 0 0 0.5 0.5 0 0 0\n";
+    const std::string floor = "( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 )" + face;
+    const std::string map = "{\n\"classname\" \"worldspawn\"\n{\n( -256 0 0 ) ( -256 1 0 ) ( -256 0 1 )" + face +
+                            "( 256 0 0 ) ( 256 0 1 ) ( 256 1 0 )" + face + "( 0 -256 0 ) ( 0 -256 1 ) ( 1 -256 0 )" +
+                            face + "( 0 256 0 ) ( 1 256 0 ) ( 0 256 1 )" + face + "( 0 0 -16 ) ( 1 0 -16 ) ( 0 1 -16 )" +
+                            face + floor + floor + "}\n}\n{\n\"classname\" \"info_player_deathmatch\"\n\"origin\" \"0 0 64\"\n}\n";
+    writeFileAtomic(dir / "leak.map", map);
+    TcpListener listener({});
+    std::string console;
+    const int status = runCommand(connectTo(listener) + "-fs_basepath " + shellQuote(dir) + " -bsp " +
+                                      shellQuote(dir / "leak.map") + " </dev/null",
+                                  &console);
+    listener.join();
+    EXPECT_EQ(status, 0) << console;
+    const std::string xml = listener.joined();
+    std::vector<std::string> linePoints;
+    std::istringstream lin(readFileText(dir / "leak.lin"));
+    for (std::string line; std::getline(lin, line);) linePoints.push_back(line);
+    ASSERT_GE(linePoints.size(), 2u);
+    std::vector<std::string> sentPoints;
+    for (const Element& e : elementsOf(xml, "message"))
+        if (e.text.rfind("MAP LEAKED", 0) == 0) {
+            EXPECT_EQ(e.level, "3");
+            for (const auto& [name, value] : e.children) sentPoints.push_back(value);
+        }
+    EXPECT_EQ(sentPoints, linePoints) << xml;
+    std::vector<std::string> selections;
+    for (const Element& e : elementsOf(xml, "select"))
+        for (const auto& [name, value] : e.children) selections.push_back(e.text.substr(0, e.text.size() - value.size()) + " [" + value + "]");
+    EXPECT_EQ(selections, (std::vector<std::string>{"Entity 0, Brush 0: duplicate plane [0 0]",
+                                                    "Entity 1, Brush 0: Entity leaked [1 0]"}))
+        << xml;
+    EXPECT_EQ(occurrences(xml, "duplicate plane"), 1u) << xml;  // not a second time as a console line
 }
 
 }  // namespace

@@ -6,6 +6,15 @@ if(NOT TARGET q3fuzz_entries)
   target_include_directories(q3fuzz_synthetic PUBLIC ${PROJECT_SOURCE_DIR}/tests/bspfile)
   target_link_libraries(q3fuzz_synthetic PUBLIC q3bspfile q3sh)
 
+  # -bsp and -vis each have a portal_file.h, so the map_bsp entry (with -bsp's headers) and the
+  # check that -vis reads its portal file (with -vis's) are libraries of their own.
+  add_library(q3fuzz_prt_check STATIC ${CMAKE_CURRENT_LIST_DIR}/fuzz_prt_check.cpp)
+  target_include_directories(q3fuzz_prt_check PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+  target_link_libraries(q3fuzz_prt_check PUBLIC q3bspfile PRIVATE q3vis)
+  add_library(q3fuzz_map_bsp STATIC ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_map_bsp.cpp)
+  target_include_directories(q3fuzz_map_bsp PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+  target_link_libraries(q3fuzz_map_bsp PUBLIC q3bspfile PRIVATE q3fuzz_prt_check q3bsp q3shaders q3mapfile q3log q3script)
+
   add_library(q3fuzz_entries STATIC
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries.cpp
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_bsp.cpp
@@ -14,5 +23,5 @@ if(NOT TARGET q3fuzz_entries)
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_prt.cpp)
   target_include_directories(q3fuzz_entries PUBLIC ${CMAKE_CURRENT_LIST_DIR})
   target_link_libraries(q3fuzz_entries PUBLIC q3fuzz_synthetic q3bspfile q3sh q3mapfile q3shaders q3json q3vfs q3vis
-                        q3io q3log q3script)
+                        q3io q3log q3script PRIVATE q3fuzz_map_bsp)
 endif()

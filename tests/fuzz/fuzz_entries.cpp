@@ -10,6 +10,7 @@ constexpr std::array kEntries = {
     FuzzEntry{"bsp", fuzzBsp, "IBSP reader: parseBsp (default and -force), validateBsp, write/read round trip, entities"},
     FuzzEntry{"sh_runtime", fuzzShRuntime, "SH grid runtime: GridRuntime::loadFromBsp, sampling, irradiance, lump re-encode"},
     FuzzEntry{"map", fuzzMap, ".map parser: parseMap, entity helpers, texture projections of every face"},
+    FuzzEntry{"map_bsp", fuzzMapBsp, "-bsp on a .map: loadMapForBsp and compileBsp (tree, portals, surfaces, lumps), output read back"},
     FuzzEntry{"shader", fuzzShader, "shader script parser: parseShaderScript"},
     FuzzEntry{"json", fuzzJson, "JSON reader: parseDocument with every value conversion, streaming readNumFile"},
     FuzzEntry{"json_pack", fuzzJsonPack, "-json -pack: packFolder on an unpacked folder with one file replaced"},

@@ -44,11 +44,15 @@ const FuzzEntry* findFuzzEntry(std::string_view name);
 void fuzzBsp(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzShRuntime(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzMap(std::span<const uint8_t> input, const FuzzContext& context);
+void fuzzMapBsp(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzShader(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJson(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzJsonPack(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPk3(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPrt(std::span<const uint8_t> input, const FuzzContext& context);
+
+// Throws PropertyViolation when -vis's reader refuses `text` (a portal file -bsp wrote).
+void checkPortalFileReads(std::string_view text);
 
 // The BSP whose unpacked JSON folder json_pack edits (and whose files seed the json targets): the
 // bspfile tests' synthetic map with an SH grid in lump 18, an extra BSPX lump, and no lightmap

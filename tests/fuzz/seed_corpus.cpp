@@ -216,11 +216,17 @@ void bspSeeds(const fs::path& cache, const fs::path& out) {
 
 void textSeeds(const fs::path& cache, const fs::path& out) {
     const fs::path loose = cache / "loose";
-    writeSeed(out / "map", "own-all-primitives.map", syntheticMap());
-    std::vector<SizedFile> maps = filesBySize(loose, ".map", "maps");
-    for (size_t i = 0; i < std::min<size_t>(3, maps.size()); ++i)
-        writeSeed(out / "map", seedName(loose, maps[i].path),
-                  completeMapPrefix(q3::readFileText(maps[i].path), kMaxTextSeed));
+    for (const char* target : {"map", "map_bsp"}) {
+        writeSeed(out / target, "own-all-primitives.map", syntheticMap());
+        std::vector<SizedFile> maps = filesBySize(loose, ".map", "maps");
+        for (size_t i = 0; i < std::min<size_t>(3, maps.size()); ++i)
+            writeSeed(out / target, seedName(loose, maps[i].path),
+                      completeMapPrefix(q3::readFileText(maps[i].path), kMaxTextSeed));
+    }
+    // The -bsp samples: small sealed maps, one feature each (areaportal, door, detail and hint,
+    // func_group, water and fog, patches, models, _skybox, a leak).
+    for (const SizedFile& sample : filesBySize(fs::path(Q3MAP_SOURCE_DIR) / "bsp-samples" / "samples", ".map", "maps"))
+        writeSeed(out / "map_bsp", "sample-" + sample.path.filename().string(), q3::readFileText(sample.path));
 
     std::vector<SizedFile> shaders = filesBySize(loose, ".shader", "scripts");
     // Spread the picks over the size range: small scripts and prefixes of big ones.

@@ -81,6 +81,25 @@ TEST(FuzzEntries, JsonPackReplacesOneFileAndRestoresIt) {
     EXPECT_FALSE(fs::exists(context.scratch / "json_pack" / "escape.json"));
 }
 
+// The -bsp samples compile through the map_bsp entry (sealed ones with a portal file -vis reads),
+// and so does the box room without its first wall (a leak).
+TEST(FuzzEntries, MapBspEntryCompilesTheSamples) {
+    const FuzzContext context{q3::test::tempDir()};
+    size_t count = 0;
+    for (const auto& item : fs::directory_iterator(Q3MAP_BSP_SAMPLE_MAPS)) {
+        if (item.path().extension() != ".map") continue;
+        SCOPED_TRACE(item.path().string());
+        run("map_bsp", q3::readFileBytes(item.path()), context);
+        ++count;
+    }
+    EXPECT_GE(count, 10u);
+    std::string room = q3::readFileText(fs::path(Q3MAP_BSP_SAMPLE_MAPS) / "box_room.map");
+    const size_t brush = room.find("{\n( ");
+    ASSERT_NE(brush, std::string::npos);
+    room.erase(brush, room.find("}\n", brush) + 2 - brush);
+    run("map_bsp", bytesOf(room), context);
+}
+
 // Accepted portal files go through every vis pass (a leading "\v" adds -hint and -merge).
 TEST(FuzzEntries, PrtEntryRunsThePassesOnSmallFiles) {
     const FuzzContext context{q3::test::tempDir()};
