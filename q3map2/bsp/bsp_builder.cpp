@@ -137,7 +137,10 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
     const ShaderInfo& si = *ds.shader;
     const int number = int(out_.surfaces.size());
     bsp::Surface s{};
-    s.shaderNum = shader(si);
+    s.shaderNum = ds.extraSurfaceFlags == 0
+                      ? shader(si)
+                      : shader(map_.shaderName(si).c_str(), si.contentFlags,
+                               map_.flagRules.surfaceFlags(si) | ds.extraSurfaceFlags);
     s.fogNum = ds.fogNum;
     s.lightmapNum = bsp::kLightmapByVertex;
     if (ds.kind == SurfaceKind::Flare || ds.kind == SurfaceKind::Shader) {
@@ -211,14 +214,19 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
 
 void BspBuilder::fixBrushSides(const std::vector<DrawSurface>& surfaces) {
     for (const DrawSurface& ds : surfaces) {
-        if (ds.outputNum < 0 || ds.brush < 0) continue;
-        const bsp::Brush& brush = out_.brushes[size_t(firstBrush_ + ds.brush)];
-        // q3map2's copy of a fog side for the back face was never written, and its output number
-        // is still 0: the file's first brush side takes that face's shader.
-        bsp::BrushSide& side = out_.brushSides[ds.fogBackFace ? 0 : size_t(brush.firstSide + ds.side)];
+        if (ds.outputNum < 0) continue;
         const std::string& name = map_.shaderName(*ds.shader);
-        if (std::strncmp(out_.shaders[size_t(side.shaderNum)].name, name.c_str(), sizeof(bsp::Shader::name)) != 0)
-            side.shaderNum = shader(*ds.shader);
+        auto fix = [&](const SideRef& ref) {
+            if (ref.brush < 0) return;
+            const bsp::Brush& brush = out_.brushes[size_t(firstBrush_ + ref.brush)];
+            // q3map2's copy of a fog side for the back face was never written, and its output
+            // number is still 0: the file's first brush side takes that face's shader.
+            bsp::BrushSide& side = out_.brushSides[ref.fogBackFace ? 0 : size_t(brush.firstSide + ref.side)];
+            if (std::strncmp(out_.shaders[size_t(side.shaderNum)].name, name.c_str(), sizeof(bsp::Shader::name)) != 0)
+                side.shaderNum = shader(*ds.shader);
+        };
+        fix({ds.brush, ds.side, ds.fogBackFace});
+        for (const SideRef& ref : ds.metaSides) fix(ref);
     }
 }
 

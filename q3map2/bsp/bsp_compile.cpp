@@ -40,6 +40,29 @@ struct ModelContext {
     Log& log;
 };
 
+void debugCounts(Log& log, std::initializer_list<std::pair<int, const char*>> counts) {
+    for (const auto& [value, what] : counts) log.debug(countLine(value, what));
+}
+
+// -meta and forced-meta shaders (q3map2 MakeEntityMetaTriangles ... MergeMetaTriangles), and the
+// collision patches -patchmeta leaves.
+void makeMeta(ModelContext& c, const BspEntity& entity, std::vector<DrawSurface>& surfaces) {
+    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.in.textures, c.options.classify, c.random};
+    const meta::MetaCounts m = meta::makeMetaSurfaces(surfaces, inputs, c.options.meta, c.log);
+    if (m.metaSurfaces > 0 || m.patchMeta > 0) {
+        c.log.debug("--- MakeEntityMetaTriangles ---");
+        debugCounts(c.log, {{m.metaSurfaces, "total meta surfaces"}, {m.stripped, "stripped surfaces"},
+                            {m.fanned, "fanned surfaces"}, {m.maxArea, "maxarea'd surfaces"},
+                            {m.patchMeta, "patch meta surfaces"}, {m.metaVerts, "meta verts"},
+                            {m.metaTriangles, "meta triangles"}});
+        c.log.debug("--- SmoothMetaTriangles ---");
+        c.log.debug(countLine(m.smoothed, "smoothed vertexes"));
+        c.log.debug("--- MergeMetaTriangles ---");
+        debugCounts(c.log, {{m.merged.surfaces, "surfaces merged"}, {m.merged.mergedVerts, "vertexes merged"}});
+    }
+    meta::markPatchCollision(surfaces, *entity.source, c.options.meta);
+}
+
 // The steps both kinds of model share once their faces exist: tessellation, classification,
 // filtering into the tree and writing (q3map2 SubdivideFaceSurfaces ... FilterDrawsurfsIntoTree,
 // FixBrushSides, EndModel).
@@ -49,19 +72,16 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     if (c.options.tjunctions) {
         c.log.debug("--- FixTJunctions ---");
         const TJunctionCounts t = fixTJunctions(surfaces);
-        c.log.debug(countLine(t.axialLines, "axial edge lines"));
-        c.log.debug(countLine(t.nonAxialLines, "non-axial edge lines"));
-        c.log.debug(countLine(t.degenerateEdges, "degenerate edges"));
-        c.log.debug(countLine(t.addedVerts, "verts added for T-junctions"));
-        c.log.debug(countLine(t.totalVerts, "total verts"));
-        c.log.debug(countLine(t.natural, "naturally ordered"));
-        c.log.debug(countLine(t.rotated, "rotated orders"));
-        c.log.debug(countLine(t.cantOrder, "can't order"));
-        c.log.debug(countLine(t.broken, "broken (degenerate) surfaces removed"));
+        debugCounts(c.log, {{t.axialLines, "axial edge lines"}, {t.nonAxialLines, "non-axial edge lines"},
+                            {t.degenerateEdges, "degenerate edges"}, {t.addedVerts, "verts added for T-junctions"},
+                            {t.totalVerts, "total verts"}, {t.natural, "naturally ordered"},
+                            {t.rotated, "rotated orders"}, {t.cantOrder, "can't order"},
+                            {t.broken, "broken (degenerate) surfaces removed"}});
     }
     c.log.debug("--- ClassifyEntitySurfaces ---");
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    makeMeta(c, entity, surfaces);
     if (c.options.debugPortals && entityIndex == 0) {
         c.log.debug("--- MakeDebugPortalSurfs ---");
         for (DrawSurface& ds : debugPortalSurfaces(tree, c.in.map.planes, c.in.shaders)) surfaces.push_back(std::move(ds));

@@ -67,6 +67,16 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.classify.minSampleSize = o.minSampleSize;
     c.classify.maxSurfaceVerts = std::max(999, o.maxLightmappedVerts);
     c.emit.maxLightmappedVerts = o.maxLightmappedVerts;
+    c.meta.meta = o.meta;
+    c.meta.patchMeta = o.patchMeta;
+    c.meta.maxArea = o.maxArea;
+    c.meta.limits.maxLightmappedVerts = o.maxLightmappedVerts;
+    c.meta.limits.maxSurfaceVerts = c.classify.maxSurfaceVerts;
+    c.meta.limits.maxIndexes = o.maxIndexes;
+    c.meta.limits.adequateScore = o.metaAdequateScore;
+    c.meta.limits.goodScore = o.metaGoodScore;
+    c.meta.limits.npDegrees = o.npDegrees;
+    c.meta.limits.maxBBoxDistance = o.metaMaxBBoxDistance;
     c.emit.debugInset = o.debugInset;
     c.brushSnap = !o.noBrushSnap;
     c.fog = !o.noFog;
