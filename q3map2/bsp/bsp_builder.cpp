@@ -7,6 +7,7 @@
 
 #include "script.h"
 #include "shader_info.h"
+#include "shaping/autosprite2.h"
 #include "surface_triangles.h"
 
 namespace q3::bspstage {
@@ -176,6 +177,8 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
                 for (float& c : v.normal) c = -c;
             ds.planeNormal = -ds.planeNormal;
         }
+        if (si.autosprite2)
+            if (std::string why = fixAutosprite2(ds); !why.empty()) warnings_.push_back(std::move(why));
         const bool soup = (ds.lightmapAxis == Vec3{0, 0, 0} && !ds.planar) || ds.kind == SurfaceKind::Triangles ||
                           ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts;
         s.surfaceType = soup ? bsp::MST_TRIANGLE_SOUP : bsp::MST_PLANAR;

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <map>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "bsp_brushes.h"
@@ -48,6 +50,8 @@ public:
     void emitPlanes(const PlaneSet& planes);
 
     int nextSurface() const { return int(out_.surfaces.size()); }
+    // Warnings of the surfaces written since the last call (autosprite2 quads left as they were).
+    std::vector<std::string> takeWarnings() { return std::exchange(warnings_, {}); }
     int brushOutput(int brushIndex) const { return firstBrush_ + brushIndex; }
 
 private:
@@ -62,6 +66,7 @@ private:
     // Start positions in drawIndexes of every three-index run, for the run search.
     std::map<std::array<int, 3>, std::vector<int>> indexRuns_;
     size_t indexedUpTo_ = 0;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace q3::bspstage

@@ -127,6 +127,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
             classifySurface(ds, c.in.map.planes, c.options.classify);
         }
         c.builder.emitSurface(ds, c.options.emit);
+        for (const std::string& w : c.builder.takeWarnings()) c.log.warning(w);
         references += refs;
         ++emitted;
         c.written.push_back(std::make_unique<DrawSurface>(ds));

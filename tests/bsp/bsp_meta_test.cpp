@@ -13,6 +13,7 @@
 #include "meta/meta_smooth.h"
 #include "meta/meta_surfaces.h"
 #include "meta/meta_triangles.h"
+#include "shaping/autosprite2.h"
 #include "shader_info.h"
 
 namespace q3::bspstage {
@@ -312,6 +313,25 @@ TEST(MetaSmooth, ShaderShadeAngleAveragesNormalsWithinIt) {
     EXPECT_LT(n0.x, 0);
     meta::MetaTriangles steep = build(128);  // 63 degrees apart: left alone
     EXPECT_EQ(meta::smoothMetaTriangles(steep, 0), 0);
+}
+
+TEST(Autosprite2, QuadIsRewrittenWithItsShortEdgesFirst) {
+    // A 2 x 28 quad standing on the Y = 0 plane, facing -Y, listed from a long edge.
+    PlaneSet planes;
+    DrawSurface ds = face(planes, {{0, 0, 0}, {0, 0, 28}, {2, 0, 28}, {2, 0, 0}});
+    ds.indexes = {0, 1, 2, 0, 2, 3};
+    EXPECT_EQ(fixAutosprite2(ds), "");
+    EXPECT_EQ(ds.indexes, (std::vector<int>{3, 0, 2, 2, 0, 1}));
+    // Vertices 0-1 and 2-3 are the short edges, running opposite ways.
+    EXPECT_EQ(xyzOf(ds.verts[0]).z, xyzOf(ds.verts[1]).z);
+    EXPECT_EQ(xyzOf(ds.verts[2]).z, xyzOf(ds.verts[3]).z);
+    EXPECT_NE(xyzOf(ds.verts[0]).z, xyzOf(ds.verts[2]).z);
+    EXPECT_EQ(xyzOf(ds.verts[0]).x, xyzOf(ds.verts[3]).x);
+    // A square has no long axis and stays as it was.
+    DrawSurface square = face(planes, {{0, 0, 0}, {0, 0, 8}, {8, 0, 8}, {8, 0, 0}});
+    square.indexes = {0, 1, 2, 0, 2, 3};
+    EXPECT_EQ(fixAutosprite2(square), "autosprite2 surface: two shortest edges share a vertex");
+    EXPECT_EQ(square.indexes, (std::vector<int>{0, 1, 2, 0, 2, 3}));
 }
 
 // Whole compiles.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bsp_stage.h"
 #include "conformance_pipeline.h"
 #include "file_io.h"
 #include "log.h"
@@ -17,6 +18,23 @@ namespace q3::bspstage::test {
 
 namespace fs = std::filesystem;
 using namespace q3::test;
+
+fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options, std::string* log) {
+    fs::remove_all(work);
+    fs::create_directories(work / "maps");
+    const fs::path map = work / "maps" / mapSource.filename();
+    fs::copy_file(mapSource, map);
+    CommonOptions common;
+    common.basePaths.push_back(openArenaBase().string());
+    common.baseGame = "baseoa";
+    common.mapPath = fs::path(map).replace_extension(".bsp");
+    common.commandLine = "-bsp";
+    Log out(false);
+    out.setVerbose(log != nullptr);
+    if (log) out.addSink([log](LogLevel, std::string_view text) { log->append(text).append("\n"); });
+    runBspStage(options, common, out);
+    return common.mapPath;
+}
 
 fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions,
                           bool meta) {

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "bsp_options.h"
 #include "shader_info.h"
 
 namespace q3::bspstage::test {
@@ -14,6 +15,11 @@ namespace q3::bspstage::test {
 // Throws when it fails.
 std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
                                        const std::string& extraOptions = {}, bool meta = true);
+
+// Our compile of a map source in a scratch maps/ folder `work` (emptied first), with the OpenArena
+// data; returns the .bsp path. With `log`, the -v output is appended to it.
+std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const std::filesystem::path& work,
+                                 const BspOptions& options = {}, std::string* log = nullptr);
 
 // Every shader of the OpenArena data (loaded once).
 const ShaderTable& openArenaShaders();

@@ -32,22 +32,6 @@ using namespace q3::bspstage::test;
 
 constexpr int kPoints = 20000;
 
-// Our compile of a map source in a scratch maps/ folder; returns the .bsp path.
-fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options = {}) {
-    fs::remove_all(work);
-    fs::create_directories(work / "maps");
-    const fs::path map = work / "maps" / mapSource.filename();
-    fs::copy_file(mapSource, map);
-    CommonOptions common;
-    common.basePaths.push_back(q3::test::openArenaBase().string());
-    common.baseGame = "baseoa";
-    common.mapPath = fs::path(map).replace_extension(".bsp");
-    common.commandLine = "-bsp";
-    Log log(false);
-    runBspStage(options, common, log);
-    return common.mapPath;
-}
-
 // Runs the reference q3map2 stage `stageArgs` (e.g. "-vis -fast") on `bspPath`; returns its exit status.
 int runReferenceStage(const fs::path& reference, const std::string& stageArgs, const fs::path& bspPath,
                       std::string& output) {
