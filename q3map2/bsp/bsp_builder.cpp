@@ -156,7 +156,7 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
         return number;
     }
     if (ds.kind == SurfaceKind::Patch) {
-        if (si.invert) {
+        if (si.invert || ds.backSide) {
             for (bsp::DrawVert& v : ds.verts)
                 for (float& c : v.normal) c = -c;
             for (int y = 0; y < ds.patchHeight; ++y)
@@ -171,7 +171,7 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
             s.lightmapVecs[1][k] = float(ds.lodBounds.maxs[k]);
         }
     } else {
-        if (si.invert) {
+        if (si.invert || ds.backSide) {
             for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i], ds.indexes[i + 1]);
             for (bsp::DrawVert& v : ds.verts)
                 for (float& c : v.normal) c = -c;

@@ -1,6 +1,7 @@
 #include "bsp_compile.h"
 
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "autocaulk.h"
@@ -16,6 +17,7 @@
 #include "patch_surfaces.h"
 #include "script.h"
 #include "shader_info.h"
+#include "shaping/finish_surfaces.h"
 #include "srf_writer.h"
 #include "structure_emit.h"
 #include "surface_filter.h"
@@ -40,6 +42,17 @@ struct ModelContext {
     Log& log;
 };
 
+// q3map_remapShader: the BSP names a shader by its remap, keeping the original shader's flags (q3map2
+// renames the entries as it writes the file).
+void remapShaderNames(bsp::Bsp& bsp, const ShaderTable& shaders) {
+    for (bsp::Shader& s : bsp.shaders) {
+        const ShaderInfo& si = shaders.find(std::string(s.name, strnlen(s.name, sizeof s.name)));
+        if (si.remapShader.empty()) continue;
+        std::memset(s.name, 0, sizeof s.name);
+        std::strncpy(s.name, si.remapShader.c_str(), sizeof s.name - 1);
+    }
+}
+
 void debugCounts(Log& log, std::initializer_list<std::pair<int, const char*>> counts) {
     for (const auto& [value, what] : counts) log.debug(countLine(value, what));
 }
@@ -47,7 +60,8 @@ void debugCounts(Log& log, std::initializer_list<std::pair<int, const char*>> co
 // -meta and forced-meta shaders (q3map2 MakeEntityMetaTriangles ... MergeMetaTriangles), and the
 // collision patches -patchmeta leaves.
 void makeMeta(ModelContext& c, const BspEntity& entity, std::vector<DrawSurface>& surfaces) {
-    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.in.textures, c.options.classify, c.random};
+    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.in.textures, c.options.classify, c.random,
+                                  &c.in.shaders};
     const meta::MetaCounts m = meta::makeMetaSurfaces(surfaces, inputs, c.options.meta, c.log);
     if (m.metaSurfaces > 0 || m.patchMeta > 0) {
         c.log.debug("--- MakeEntityMetaTriangles ---");
@@ -79,6 +93,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
                             {t.broken, "broken (degenerate) surfaces removed"}});
     }
     c.log.debug("--- ClassifyEntitySurfaces ---");
+    finishSurfaces(surfaces, {c.in.file, c.in.shaders, c.options.celShader, c.options.maxDrawSurfaces});
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
     makeMeta(c, entity, surfaces);
@@ -104,6 +119,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     for (size_t i = 0; i < surfaces.size(); ++i) {
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
+        applyTcMod(surfaces[i]);
         if (c.options.flares)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
@@ -219,6 +235,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     log.debug(countLine(int(builder.bsp().models.size()), "bspModels in total"));
     emitFogs(fogs, map, brushOutputs, builder, log);
     builder.emitPlanes(map.planes);
+    remapShaderNames(builder.bsp(), in.shaders);
     builder.bsp().entities = bsp::unparseEntities(bspEntities(map, options.entities));
 
     std::vector<const DrawSurface*> order;

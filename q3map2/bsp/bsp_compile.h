@@ -37,6 +37,7 @@ struct BspCompileOptions {
     bool autocaulk = false;     // -autocaulk: stop after the world's visible hulls with the .caulk text
     bool debugPortals = false;  // -debugportals: a face for every passable portal of the world tree
     meta::MetaOptions meta;     // -meta, -patchmeta and their limits
+    std::string celShader;      // -celshader, "textures/" in front; empty: none
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
 };

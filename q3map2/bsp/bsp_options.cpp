@@ -82,7 +82,9 @@ cli::OptionTable<O> buildTable() {
                         kImplemented));
     t.push_back(flag<O>({"-nohint"}, &O::noHint, "Disable hint brushes", kImplemented));
     t.push_back(refused({"-flat"}, {}, "Flat shading: one texture coordinate per shader"));
-    t.push_back(refused({"-celshader"}, {textArg("shader")}, "Global cel shader"));
+    t.push_back(cli::custom<O>({"-celshader"}, {textArg("shader")}, 1, "none",
+                               "Cel shade every surface with this shader (textures/ is put in front)", kImplemented,
+                               [](O& o, std::span<const ArgValue> v) { o.celShader = "textures/" + v[0].text; }));
     t.push_back(flag<O>({"-meta"}, &O::meta, "Combine brush faces into meta triangle surfaces", kImplemented));
     t.push_back(cli::custom<O>({"-metaadequatescore"}, {intArg()}, 1, "110000",
                                "Adequate score for adding triangles to meta surfaces (negative: the default)",

@@ -35,6 +35,7 @@ struct BspOptions {
     int metaAdequateScore = -1;      // -metaadequatescore (negative: built in)
     int metaGoodScore = -1;          // -metagoodscore (negative: built in)
     float metaMaxBBoxDistance = -1;  // -metamaxbboxdistance (negative: off)
+    std::string celShader;           // -celshader, with textures/ in front
     bool noBrushSnap = false;    // -nobrushsnap
     bool noHint = false;         // -nohint
     bool flares = false;         // -flares / -noflares (quake3's default: off)

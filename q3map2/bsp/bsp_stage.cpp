@@ -68,6 +68,7 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.classify.maxSurfaceVerts = std::max(999, o.maxLightmappedVerts);
     c.emit.maxLightmappedVerts = o.maxLightmappedVerts;
     c.meta.meta = o.meta;
+    c.celShader = o.celShader;
     c.meta.patchMeta = o.patchMeta;
     c.meta.maxArea = o.maxArea;
     c.meta.limits.maxLightmappedVerts = o.maxLightmappedVerts;

@@ -79,6 +79,8 @@ struct DrawSurface {
     float shadeAngle = 0;        // entity _shadeangle in degrees: meta triangles smooth their normals
     std::vector<SideRef> metaSides;  // meta surfaces: the sides their triangles came from
     uint32_t extraSurfaceFlags = 0;  // added to the shader's in the BSP (-patchmeta collision patches)
+    const ShaderInfo* celShader = nullptr;  // copied as a cel surface (entity _celshader, -celshader)
+    bool backSide = false;                  // a q3map_backShader copy: written facing the other way
 
     int outputNum = -1;  // BSP surface number once written
 };

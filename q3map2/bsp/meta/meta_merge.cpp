@@ -239,11 +239,20 @@ private:
     size_t usedInList_ = 0;
 };
 
-// q3map2's processing order: merge keys, then position along the oblique direction. Shaders are
-// ordered by first appearance (q3map2 compares their addresses, which no file records).
-std::vector<int> processingOrder(const MetaTriangles& set) {
+// q3map2's processing order: merge keys, then position along the oblique direction. q3map2 orders
+// shaders by address, that is by the order it made them: script shaders in load order, then the
+// others as the map first used them (here: as the triangles first use them).
+std::vector<int> processingOrder(const MetaTriangles& set, const ShaderTable* table) {
     std::map<const ShaderInfo*, int> shaderRank;
-    for (const MetaTriangle& t : set.triangles) shaderRank.try_emplace(t.shader, int(shaderRank.size()));
+    if (table) {
+        std::map<const ShaderInfo*, int> loaded;
+        for (const auto& s : table->shaders()) loaded.emplace(s.get(), int(loaded.size()));
+        for (const MetaTriangle& t : set.triangles)
+            if (auto it = loaded.find(t.shader); it != loaded.end()) shaderRank.emplace(t.shader, it->second);
+    }
+    const int firstUnloaded = table ? int(table->size()) : 0;
+    for (const MetaTriangle& t : set.triangles)
+        if (!shaderRank.contains(t.shader)) shaderRank.emplace(t.shader, firstUnloaded + int(shaderRank.size()));
     std::vector<int> order(set.triangles.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int ia, int ib) {
@@ -263,14 +272,14 @@ std::vector<int> processingOrder(const MetaTriangles& set) {
 }  // namespace
 
 std::vector<DrawSurface> mergeMetaTriangles(MetaTriangles& set, const PlaneSet& planes, const TextureSizes& textures,
-                                            const MergeLimits& limits, MergeCounts* counts) {
+                                            const MergeLimits& limits, MergeCounts* counts, const ShaderTable* table) {
     MergeCounts local;
     MergeCounts& c = counts ? *counts : local;
     const int adequate = limits.adequateScore >= 0 ? limits.adequateScore : kDefaultAdequate;
     const int good = limits.goodScore >= 0 ? limits.goodScore : kDefaultGood;
     std::vector<DrawSurface> out;
     Cloud cloud(set.triangles.size());
-    for (int seed : processingOrder(set)) {
+    for (int seed : processingOrder(set, table)) {
         if (set.triangles[size_t(seed)].used) continue;
         Growing surface(set, set.triangles[size_t(seed)], planes, textures, limits, c);
         cloud.start(int(out.size()));

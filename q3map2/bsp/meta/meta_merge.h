@@ -17,6 +17,10 @@
 #include "meta_triangles.h"
 #include "texture_sizes.h"
 
+namespace q3 {
+class ShaderTable;
+}
+
 namespace q3::bspstage::meta {
 
 struct MergeLimits {
@@ -35,8 +39,10 @@ struct MergeCounts {
 };
 
 // Builds the surfaces (kind Meta, not yet classified; lightmapAxis is the seed triangle's) and
-// marks every triangle used. Output order is the seeds' order, so it does not depend on threads.
+// marks every triangle used. Output order is the seeds' order, so it does not depend on threads;
+// `table`, when given, orders the shaders as q3map2 does (load order first).
 std::vector<DrawSurface> mergeMetaTriangles(MetaTriangles& set, const PlaneSet& planes, const TextureSizes& textures,
-                                            const MergeLimits& limits, MergeCounts* counts = nullptr);
+                                            const MergeLimits& limits, MergeCounts* counts = nullptr,
+                                            const ShaderTable* table = nullptr);
 
 }  // namespace q3::bspstage::meta

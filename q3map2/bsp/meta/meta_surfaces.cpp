@@ -100,7 +100,7 @@ MetaCounts makeMetaSurfaces(std::vector<DrawSurface>& surfaces, const MetaInputs
     tidySurfaces(surfaces);
 
     counts.smoothed = smoothMetaTriangles(set, options.limits.npDegrees);
-    std::vector<DrawSurface> merged = mergeMetaTriangles(set, in.planes, in.textures, options.limits, &counts.merged);
+    std::vector<DrawSurface> merged = mergeMetaTriangles(set, in.planes, in.textures, options.limits, &counts.merged, in.shaders);
     for (DrawSurface& ds : merged) {
         // Classification would take the axis from vertex normals, which smoothing may have bent:
         // the seed triangle's axis, which decided the merge, is kept.

@@ -50,6 +50,7 @@ struct MetaInputs {
     const TextureSizes& textures;
     const ClassifyOptions& classify;
     LibcRandom& random;  // -maxarea retries, drawn in surface order
+    const ShaderTable* shaders = nullptr;  // orders merged surfaces by shader load order
 };
 
 // Replaces the model's meta-bound surfaces by merged meta surfaces (appended); emptied ones are
