@@ -70,7 +70,9 @@ int BspBuilder::shader(const char* name, uint32_t contentFlags, uint32_t surface
 }
 
 int BspBuilder::shader(const ShaderInfo& si) {
-    return shader(map_.shaderName(si).c_str(), si.contentFlags, map_.flagRules.surfaceFlags(si));
+    auto [it, added] = shaderEntries_.try_emplace(&si, 0);
+    if (added) it->second = shader(map_.shaderName(si).c_str(), si.contentFlags, map_.flagRules.surfaceFlags(si));
+    return it->second;
 }
 
 void BspBuilder::beginModel(const BspEntity& e) {

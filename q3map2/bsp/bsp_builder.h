@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -65,6 +66,8 @@ private:
     int firstBrush_ = 0;
     // Start positions in drawIndexes of every three-index run, for the run search.
     std::map<std::array<int, 3>, std::vector<int>> indexRuns_;
+    // The entry each shader was given: entries are only appended, so the first match stays first.
+    std::unordered_map<const ShaderInfo*, int> shaderEntries_;
     size_t indexedUpTo_ = 0;
     std::vector<std::string> warnings_;
 };
