@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the compiler on a real OpenArena map in a work folder outside the clone.
+# Builds a real OpenArena map from its .map source through all three stages with this compiler
+# (-bsp, -vis, -light -fast -sh) in a work folder outside the clone, then looks at the result.
 # Usage: tools/demo.sh [build-dir] [map-name]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,18 +11,22 @@ q3map2="$PWD/$build/q3map2/q3map2"
 
 work="$cache/demo/baseoa/maps"
 mkdir -p "$work"
-bsp=$(find "$cache/loose" -path "*/maps/$map.bsp" | head -n 1)
 src=$(find "$cache/loose" -path "*/maps/$map.map" | head -n 1)
-[ -n "$bsp" ] || { echo "demo: no map named $map in $cache" >&2; exit 1; }
-cp "$bsp" "$work/$map.bsp"
-[ -z "$src" ] || cp "$src" "$work/$map.map"
+[ -n "$src" ] || { echo "demo: no .map source named $map in $cache" >&2; exit 1; }
+rm -f "$work/$map".{bsp,prt,lin,srf}
+cp "$src" "$work/$map.map"
 
 game="-fs_basepath $cache/openarena -fs_game baseoa"
-echo "== $q3map2 $game -light -fast -sh $work/$map.bsp"
-"$q3map2" $game -light -fast -sh "$work/$map.bsp"
-echo "== $q3map2 -shprobe $work/$map.bsp 0 0 64"
-"$q3map2" -shprobe "$work/$map.bsp" 0 0 64
-echo "== $q3map2 -info $work/$map.bsp"
-"$q3map2" -info "$work/$map.bsp"
+run() {
+  echo "== $q3map2 $*"
+  local start=$SECONDS
+  "$q3map2" "$@"
+  echo "   ($((SECONDS - start)) s)"
+}
+run $game -bsp "$work/$map.map"
+run $game -vis "$work/$map.bsp"
+run $game -light -fast -sh "$work/$map.bsp"
+run -shprobe "$work/$map.bsp" 0 0 64
+run -info "$work/$map.bsp"
 echo
-echo "Relit map: $work/$map.bsp"
+echo "Compiled map: $work/$map.bsp (from $src)"

@@ -177,6 +177,7 @@ struct ShaderInfo {
     bool lightmapMergable = false;         // q3map_lightmapMergable
     bool nonplanar = false;                // q3map_nonplanar
     bool forceMeta = false;                // q3map_forceMeta
+    bool clipModel = false;                // q3map_clipModel: misc_models with it get clip brushes
     float shadeAngleDegrees = 0;           // q3map_shadeAngle; 0 = no phong shading
     float vertexScale = 1;                 // product of q3map_vertexScale factors
     bool noVertexLight = false;            // q3map_noVertexLight

@@ -316,6 +316,8 @@ private:
             shader.shadeAngleDegrees = 179.0f;
         } else if (is("q3map_forceMeta")) {
             shader.forceMeta = true;
+        } else if (is("q3map_clipModel")) {
+            shader.clipModel = true;
         } else if (is("q3map_nonplanar")) {
             shader.nonplanar = true;
         } else if (is("q3map_shadeAngle")) {

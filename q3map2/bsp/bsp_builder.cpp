@@ -40,6 +40,11 @@ void insetTriangles(DrawSurface& ds) {
     }
 }
 
+// -debugsurfaces: q3map2's twelve colours, by draw surface number.
+constexpr uint8_t kDebugColors[12][3] = {{255, 0, 0},   {192, 128, 128}, {255, 255, 0}, {192, 192, 128},
+                                         {0, 255, 255}, {128, 192, 192}, {0, 0, 255},   {128, 128, 192},
+                                         {255, 0, 255}, {192, 128, 192}, {0, 255, 0},   {128, 192, 128}};
+
 }  // namespace
 
 BspBuilder::BspBuilder(const LoadedMap& map, const ShaderTable& shaders) : map_(map), shaders_(shaders) {
@@ -136,17 +141,21 @@ int BspBuilder::findIndexRun(const std::vector<int>& indexes) {
     return -1;
 }
 
-int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) {
+int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, int mapSurfaceNumber) {
     const ShaderInfo& si = *ds.shader;
     const int number = int(out_.surfaces.size());
     bsp::Surface s{};
-    s.shaderNum = ds.extraSurfaceFlags == 0
-                      ? shader(si)
-                      : shader(map_.shaderName(si).c_str(), si.contentFlags,
-                               map_.flagRules.surfaceFlags(si) | ds.extraSurfaceFlags);
+    const bool flare = ds.kind == SurfaceKind::Flare || ds.kind == SurfaceKind::Shader;
+    if (options.debugSurfaces && !flare)
+        s.shaderNum = shader(shaders_.find("debugsurfaces"));
+    else if (ds.extraSurfaceFlags == 0)
+        s.shaderNum = shader(si);
+    else
+        s.shaderNum = shader(map_.shaderName(si).c_str(), si.contentFlags,
+                             map_.flagRules.surfaceFlags(si) | ds.extraSurfaceFlags);
     s.fogNum = ds.fogNum;
     s.lightmapNum = bsp::kLightmapByVertex;
-    if (ds.kind == SurfaceKind::Flare || ds.kind == SurfaceKind::Shader) {
+    if (flare) {
         // A flare has no vertices: its origin, colour and normal travel in the lightmap fields.
         // A shader-only surface is written the same way, with all three zero.
         s.surfaceType = bsp::MST_FLARE;
@@ -182,7 +191,8 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
         if (si.autosprite2)
             if (std::string why = fixAutosprite2(ds); !why.empty()) warnings_.push_back(std::move(why));
         const bool soup = (ds.lightmapAxis == Vec3{0, 0, 0} && !ds.planar) || ds.kind == SurfaceKind::Triangles ||
-                          ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts;
+                          ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts ||
+                          options.debugSurfaces;
         s.surfaceType = soup ? bsp::MST_TRIANGLE_SOUP : bsp::MST_PLANAR;
         if (options.debugInset) insetTriangles(ds);
         if (ds.indexes.size() > 16 && !si.autosprite) optimizeForVertexCache(ds.indexes);
@@ -202,6 +212,7 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options) 
                 model.mins[k] = std::min(model.mins[k], v.xyz[k]);
                 model.maxs[k] = std::max(model.maxs[k], v.xyz[k]);
             }
+        if (options.debugSurfaces) std::memcpy(v.color, kDebugColors[mapSurfaceNumber % 12], 3);
         out_.drawVerts.push_back(v);
     }
     const int run = findIndexRun(ds.indexes);

@@ -24,6 +24,7 @@ namespace q3::bspstage {
 struct SurfaceEmitOptions {
     int maxLightmappedVerts = 64;  // -mv: larger surfaces are written as triangle soup
     bool debugInset = false;       // -debuginset: triangle corners pulled 1 unit towards their centre
+    bool debugSurfaces = false;    // -debugsurfaces: shader debugsurfaces, vertex colours by surface number
 };
 
 class BspBuilder {
@@ -42,7 +43,9 @@ public:
     void emitBrushes(const std::vector<Brush>& brushes);
     // Writes a surface (faces are triangulated first) and returns its number; the vertices grow
     // the bounds of a brush model.
-    int emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options);
+    // `mapSurfaceNumber`: the surface's place among all draw surfaces made so far (q3map2's
+    // mapDrawSurfs index), which picks its -debugsurfaces colour.
+    int emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, int mapSurfaceNumber = 0);
     // Points the current model's brush sides at the shader of the face drawn from them when the
     // names differ (q3map2 FixBrushSides; the back face of a fog side re-points brush side 0).
     void fixBrushSides(const std::vector<DrawSurface>& surfaces);

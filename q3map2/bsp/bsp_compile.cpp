@@ -14,6 +14,7 @@
 #include "log.h"
 #include "max_area_triangles.h"
 #include "model_surfaces.h"
+#include "skybox.h"
 #include "patch_surfaces.h"
 #include "script.h"
 #include "shader_info.h"
@@ -40,6 +41,7 @@ struct ModelContext {
     std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
     LibcRandom& random;  // -maxarea retries, drawn in surface order
     Log& log;
+    int mapSurfacesBefore = 0;  // draw surfaces of the models already written (q3map2 numbers them on)
 };
 
 // q3map_remapShader: the BSP names a shader by its remap, keeping the original shader's flags (q3map2
@@ -115,25 +117,32 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     TriangulationCounts triangles;
     int references = 0, emitted = 0;
     const FlareColors noColors;
-    // Surface flares are appended while the list is walked, and filtered after the others.
+    // Surface flares and _skybox copies are appended while the list is walked, and filtered after
+    // the others; a copy skips what its original went through before filtering.
+    const std::optional<ModelTransform> skybox = entityIndex == 0 ? skyboxTransform(c.in.map.entities) : std::nullopt;
     for (size_t i = 0; i < surfaces.size(); ++i) {
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
+        const bool isSkyCopy = surfaces[i].skyboxCopy;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
-        applyTcMod(surfaces[i]);
-        if (c.options.flares)
+        if (!isSkyCopy) applyTcMod(surfaces[i]);
+        if (c.options.flares && !isSkyCopy)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
                 surfaces.push_back(std::move(*f));
         DrawSurface& ds = surfaces[i];
-        if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
-        biasSurfaceTextures(ds);
-        if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare && !shaderOnly) {
-            DBounds bounds;
-            for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
-            ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);
+        if (!isSkyCopy) {
+            if (ds.shader->isNoDraw() && ds.kind != SurfaceKind::Patch) continue;
+            biasSurfaceTextures(ds);
+            if (entityIndex != 0 && !ds.shader->noFog && ds.kind != SurfaceKind::Flare && !shaderOnly) {
+                DBounds bounds;
+                for (const bsp::DrawVert& v : ds.verts) bounds.add(DVec3(Vec3::fromArray(v.xyz)) + entity.origin);
+                ds.fogNum = fogForBounds(bounds, c.fogs, c.in.map, 1.0);
+            }
         }
-        // A shader-only surface is written without being referenced by any leaf.
-        const int refs = shaderOnly ? 1 : filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
+        // A shader-only surface is written without being referenced by any leaf; a sky copy goes to
+        // the leaves that draw sky, or where it lies when there are none.
+        int refs = isSkyCopy ? addSkyboxReferences(ds, tree, c.builder.nextSurface()) : 0;
+        if (refs == 0) refs = shaderOnly ? 1 : filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
         if (refs == 0) continue;
         if (ds.kind == SurfaceKind::Face) {
             if (c.options.maxArea)
@@ -142,11 +151,12 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
                 triangulateFace(ds, &triangles);
             classifySurface(ds, c.in.map.planes, c.options.classify);
         }
-        c.builder.emitSurface(ds, c.options.emit);
+        c.builder.emitSurface(ds, c.options.emit, c.mapSurfacesBefore + int(i));
         for (const std::string& w : c.builder.takeWarnings()) c.log.warning(w);
         references += refs;
         ++emitted;
         c.written.push_back(std::make_unique<DrawSurface>(ds));
+        if (ds.skybox && !isSkyCopy && skybox) surfaces.push_back(skyboxCopy(ds, *skybox));
     }
     c.log.debug(countLine(references, "references"));
     c.log.debug(countLine(emitted, "emitted drawsurfs"));
@@ -155,6 +165,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     if (c.options.maxArea) c.log.debug(countLine(triangles.maxArea, "maxarea'd face surfaces"));
     c.builder.fixBrushSides(surfaces);
     c.builder.endModel(tree);
+    c.mapSurfacesBefore += int(surfaces.size());
 }
 
 }  // namespace
@@ -178,6 +189,8 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     std::vector<int> brushOutputs(map.entities.size(), -1);
     LibcRandom random;
     ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
+    const ModelInputs modelInputs{in.file, in.shaders, in.vfs, options.renameModelShaders,
+                                  options.classify.maxSurfaceVerts, options.clip};
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];
@@ -206,7 +219,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 log.debug(countLine(culled.coincident, "coincident faces culled"));
                 addFaceSurfaces(e, faces, params, surfaces);
             }
-            addModelSurfaces(e, true, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces, log);
+            std::vector<Brush> clip;
+            addModelSurfaces(e, true, map, modelInputs, surfaces, clip, log);
+            prependClipBrushes(e, std::move(clip), surfaces, out.world.tree);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);
@@ -224,8 +239,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
             cullSides(e.brushes, map.planes);
             clipSidesIntoTree(e.brushes, tree, map.planes);
             addFaceSurfaces(e, faces, params, surfaces);
-            addModelSurfaces(e, false, map, {in.file, in.shaders, in.vfs, options.renameModelShaders}, surfaces,
-                             log);
+            std::vector<Brush> clip;
+            addModelSurfaces(e, false, map, modelInputs, surfaces, clip, log);
+            prependClipBrushes(e, std::move(clip), surfaces, tree);
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             finishModel(c, i, surfaces, tree);

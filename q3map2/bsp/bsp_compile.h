@@ -11,6 +11,7 @@
 #include "flares.h"
 #include "meta/meta_surfaces.h"
 #include "surface_classify.h"
+#include "model_clip.h"
 #include "world_structure.h"
 
 namespace q3 {
@@ -40,6 +41,7 @@ struct BspCompileOptions {
     std::string celShader;      // -celshader, "textures/" in front; empty: none
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
+    ClipOptions clip;               // -clipdepth, -debugclip, -snap for misc_model clip brushes
 };
 
 struct CompiledBsp {

@@ -113,13 +113,17 @@ cli::OptionTable<O> buildTable() {
     t.push_back(flag<O>({"-skyfix"}, &O::skyFix,
                         "Add shader-only surfaces for the six sky box images (GL_CLAMP border workaround)",
                         kImplemented));
-    t.push_back(refused({"-debugsurfaces"}, {}, "Colour the vertices of each surface differently"));
+    t.push_back(flag<O>({"-debugsurfaces"}, &O::debugSurfaces,
+                        "Colour the vertices of each surface by its number (shader debugsurfaces)", kImplemented));
     t.push_back(flag<O>({"-debuginset"}, &O::debugInset, "Push triangle vertices one unit to the triangle centre",
                         kImplemented));
     t.push_back(flag<O>({"-debugportals"}, &O::debugPortals,
                         "Make surfaces (shader debugportals) of the world tree's passable portals", kImplemented));
-    t.push_back(refused({"-debugclip"}, {}, "Make misc_model autoclip brushes visible"));
-    t.push_back(refused({"-clipdepth"}, {floatArg()}, "Thickness of misc_model autoclip brushes"));
+    t.push_back(flag<O>({"-debugclip"}, &O::debugClip,
+                        "Make misc_model autoclip brushes visible (shaders debugclip2 and debugclip)", kImplemented));
+    t.push_back(cli::floatValue<O>({"-clipdepth"}, &O::clipDepth, Range::any(),
+                                   "Thickness of misc_model autoclip brushes (misc_model _clipdepth overrides it)",
+                                   kImplemented));
     for (const char* colour : {"-sRGBtex", "-nosRGBtex", "-sRGBcolor", "-nosRGBcolor", "-nosRGB"})
         t.push_back(refused({colour}, {}, "Colour space of textures and colours (they only change flare colours)"));
     t.push_back(flag<O>({"-altsplit"}, &O::alternateSplit, "Alternative split plane score", kImplemented));

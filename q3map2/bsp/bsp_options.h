@@ -49,6 +49,9 @@ struct BspOptions {
     bool autocaulk = false;      // -autocaulk
     bool debugPortals = false;   // -debugportals
     bool debugInset = false;     // -debuginset
+    bool debugSurfaces = false;  // -debugsurfaces
+    bool debugClip = false;      // -debugclip
+    float clipDepth = 2;         // -clipdepth
     ShaderFlagRules flagRules;   // -noob, -globalflag
 };
 

@@ -79,6 +79,8 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.meta.limits.npDegrees = o.npDegrees;
     c.meta.limits.maxBBoxDistance = o.metaMaxBBoxDistance;
     c.emit.debugInset = o.debugInset;
+    c.emit.debugSurfaces = o.debugSurfaces;
+    c.clip = {o.clipDepth, o.debugClip, o.bevelSnap};
     c.brushSnap = !o.noBrushSnap;
     c.fog = !o.noFog;
     c.subdivide = !o.noSubdivide;

@@ -22,6 +22,8 @@ struct TreeNode {
     bool opaque = false;         // filled by a structural opaque brush, or outside the map
     int occupied = 0;            // flood step from the nearest entity; 0 = never reached
     int occupant = -1;           // entity whose flood started in this leaf
+    bool skybox = false;         // reached from a _skybox entity, or in its area: its surfaces get sky copies
+    bool sky = false;            // draws a sky surface: sky copies of the _skybox room are drawn here
     int cluster = -1;
     int area = -1;
     int firstPortal = -1;        // head of this node's portal list

@@ -83,6 +83,12 @@ struct DrawSurface {
     bool backSide = false;                  // a q3map_backShader copy: written facing the other way
 
     int outputNum = -1;  // BSP surface number once written
+
+    // _skybox: a surface drawn in a _skybox leaf gets a copy moved into the sky (skyboxCopy), drawn
+    // where sky is; the copy names the original's BSP surface (.srf "parent").
+    bool skybox = false;
+    bool skyboxCopy = false;
+    int parentSurface = -1;
 };
 
 // Lighting keys of a .map entity that every surface of its brushes and patches carries (q3map2

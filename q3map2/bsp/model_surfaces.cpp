@@ -1,13 +1,15 @@
 #include "model_surfaces.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <filesystem>
+#include <map>
 #include <optional>
 
 #include "log.h"
-#include "md3_model.h"
+#include "model.h"
+#include "model_clip.h"
+#include "model_transform.h"
 #include "script.h"
 #include "shader_info.h"
 #include "vfs.h"
@@ -15,11 +17,9 @@
 namespace q3::bspstage {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kRandomMapGenerator = 1;  // SoF2's RMG_BSP spawnflag: the -rename suffix
-constexpr int kClipFlags = 2 | 8 | 16 | 128 | 256 | 512 | 1024 | 2048 | 4096;  // autoclip spawnflags
 constexpr int kForceMeta = 4;
-constexpr int kColorToAlpha = 32;
+constexpr int kColorToAlpha = 32;  // the vertex colour's grey goes to alpha, colour becomes white
 
 const std::string* keyOf(const map::MapEntity& e, std::initializer_list<const char*> keys) {
     for (const char* k : keys)
@@ -63,77 +63,110 @@ std::string remapped(const std::string& shader, const std::vector<Remap>& remaps
     return to ? *to : shader;
 }
 
-DVec3 vectorKey(const map::MapEntity& e, const char* key, DVec3 fallback) {
+Vec3 vectorKey(const map::MapEntity& e, const char* key, Vec3 fallback) {
     const std::string* v = e.find(key);
     if (!v) return fallback;
-    double x = 0, y = 0, z = 0;
-    const int read = std::sscanf(v->c_str(), "%lf %lf %lf", &x, &y, &z);
+    float x = 0, y = 0, z = 0;
+    const int read = std::sscanf(v->c_str(), "%f %f %f", &x, &y, &z);
     if (read == 1) return {x, x, x};
-    return read == 3 ? DVec3{x, y, z} : fallback;
+    return read == 3 ? Vec3{x, y, z} : fallback;
 }
 
+// Keys read as floats and the parent's origin taken off in floats, as q3map2 does.
 ModelTransform transformOf(const map::MapEntity& e, const DVec3& parentOrigin) {
-    const DVec3 origin = parseVectorKey(e.value("origin")) - parentOrigin;
-    DVec3 scale{1, 1, 1};
+    const Vec3 origin = vectorKey(e, "origin", {0, 0, 0}) -
+                        Vec3{float(parentOrigin.x), float(parentOrigin.y), float(parentOrigin.z)};
+    Vec3 scale{1, 1, 1};
     if (e.find("modelscale_vec")) {
         scale = vectorKey(e, "modelscale_vec", scale);
     } else if (const std::string* s = e.find("modelscale")) {
-        scale = DVec3::splat(std::atof(s->c_str()));
+        scale = Vec3::splat(float(std::atof(s->c_str())));
     }
-    double pitch = 0, yaw = 0, roll = 0;
+    float pitch = 0, yaw = 0, roll = 0;
     if (const std::string* a = e.find("angles")) {
-        std::sscanf(a->c_str(), "%lf %lf %lf", &pitch, &yaw, &roll);
+        std::sscanf(a->c_str(), "%f %f %f", &pitch, &yaw, &roll);
     } else if (const std::string* a = e.find("angle")) {
-        yaw = std::atof(a->c_str());
+        yaw = float(std::atof(a->c_str()));
     }
-    return modelTransform(origin, pitch, yaw, roll, scale);
+    return ModelTransform::place(origin, pitch, yaw, roll, scale);
+}
+
+// Models loaded once per name and frame, failures too (each entity using one is warned about).
+class ModelCache {
+public:
+    const std::vector<model::Surface>* get(const std::string& name, int frame, const ModelInputs& inputs,
+                                          const std::string& who, Log& log) {
+        auto [it, added] = models_.try_emplace({toLower(name), frame});
+        if (added) {
+            try {
+                if (!inputs.vfs) throw model::ModelError(name + ": no game folders to read models from");
+                const model::FileReader read = [&](const std::string& path) { return inputs.vfs->read(path); };
+                it->second.surfaces = model::loadModel(name, read, {frame, inputs.maxSurfaceVerts});
+            } catch (const model::ModelError& err) {
+                it->second.error = err.what();
+            }
+        }
+        if (!it->second.error.empty()) {
+            log.warning(who + ": model skipped: " + it->second.error);
+            return nullptr;
+        }
+        return &it->second.surfaces;
+    }
+
+private:
+    struct Entry {
+        std::vector<model::Surface> surfaces;
+        std::string error;
+    };
+    std::map<std::pair<std::string, int>, Entry> models_;
+};
+
+// The remaps of the entity's _skin/skin key; nullopt when there is none or its file is missing
+// (q3map2 then draws every surface under its own shader).
+std::optional<std::vector<model::SkinRemap>> skinOf(const map::MapEntity& e, const std::string& modelName,
+                                                     const Vfs* vfs, Log& log) {
+    const std::string* skin = keyOf(e, {"_skin", "skin"});
+    if (!skin || skin->empty() || !vfs) return std::nullopt;
+    const std::string file = model::skinFileName(modelName, *skin);
+    const std::optional<std::vector<uint8_t>> bytes = vfs->read(file);
+    if (!bytes) {
+        log.debug(label(e) + ": skin file " + file + " not found");
+        return std::nullopt;
+    }
+    std::vector<model::SkinRemap> remaps = model::parseSkin(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+    if (remaps.empty()) return std::nullopt;
+    log.info("Using skin " + *skin + " of " + modelName);
+    return remaps;
+}
+
+// q3map2 normalises model normals in doubles: the last bits differ from a float normalisation.
+Vec3 normalizedInDoubles(const Vec3& v) {
+    const double x = v.x, y = v.y, z = v.z, len = std::sqrt(x * x + y * y + z * z);
+    if (len == 0) return {0, 0, 0};
+    return {float(x / len), float(y / len), float(z / len)};
+}
+
+// Model colours to bytes as q3map2 does (scaled, clamped, truncated).
+uint8_t colorByte(float c) { return uint8_t(std::clamp(c * 255.0f, 0.0f, 255.0f)); }
+
+void setColor(bsp::DrawVert& dv, const float (&color)[4], bool colorToAlpha) {
+    if (colorToAlpha) {
+        const float grey = color[0] * 0.2989f + color[1] * 0.5870f + color[2] * 0.1140f;
+        dv.color[0] = dv.color[1] = dv.color[2] = 255;
+        dv.color[3] = colorByte(grey);
+    } else {
+        for (int i = 0; i < 4; ++i) dv.color[i] = colorByte(color[i]);
+    }
 }
 
 }  // namespace
 
-Vec3 ModelTransform::point(const Vec3& p) const {
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) out[i] = float(m[i][0] * p.x + m[i][1] * p.y + m[i][2] * p.z + m[i][3]);
-    return out;
-}
-
-Vec3 ModelTransform::direction(const Vec3& d) const {
-    // Inverse transpose of the 3x3 part: the cofactor matrix over the determinant.
-    auto c = [&](int r, int k) { return m[(r + 1) % 3][(k + 1) % 3] * m[(r + 2) % 3][(k + 2) % 3] -
-                                        m[(r + 1) % 3][(k + 2) % 3] * m[(r + 2) % 3][(k + 1) % 3]; };
-    const double det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) out[i] = float((c(i, 0) * d.x + c(i, 1) * d.y + c(i, 2) * d.z) / det);
-    return out;
-}
-
-bool ModelTransform::leftHanded() const {
-    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    return det < 0;
-}
-
-ModelTransform modelTransform(const DVec3& origin, double pitch, double yaw, double roll, const DVec3& scale) {
-    const double x = roll * kPi / 180, y = pitch * kPi / 180, z = yaw * kPi / 180;
-    const double cx = std::cos(x), sx = std::sin(x), cy = std::cos(y), sy = std::sin(y), cz = std::cos(z), sz = std::sin(z);
-    // Rz * Ry * Rx, columns scaled.
-    const double r[3][3] = {{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-                            {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-                            {-sy, cy * sx, cy * cx}};
-    ModelTransform t;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) t.m[i][j] = r[i][j] * scale[j];
-        t.m[i][3] = origin[i];
-    }
-    return t;
-}
-
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
-                      std::vector<DrawSurface>& out, Log& log) {
+                      std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log) {
     const std::string targetName =
         isWorld ? std::string() : parent.source->value("_targetname", parent.source->value("targetname"));
     if (!isWorld && targetName.empty()) return;
+    ModelCache cache;
     for (const map::MapEntity& e : inputs.file.entities) {
         if (e.number == 0 || !equalsNoCase(e.classname(), "misc_model")) continue;
         const std::string* target = keyOf(e, {"_target", "target"});
@@ -144,40 +177,34 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             continue;
         }
         const int spawnFlags = std::atoi(e.value("spawnflags").c_str());
-        if (spawnFlags & (kClipFlags | kForceMeta | kColorToAlpha)) {
+        if (spawnFlags & kForceMeta) {
             log.warning(label(e) + ": spawnflags " + std::to_string(spawnFlags) +
-                        " (autoclip, forced meta or colour to alpha) are not supported by this build; model skipped");
+                        " (forced meta) are not supported by this build; model skipped");
             continue;
         }
-        if (e.find("_skin") || e.find("skin")) {
-            log.warning(label(e) + ": model skins are not supported by this build; model skipped");
-            continue;
-        }
-        const std::string extension = toLower(std::filesystem::path(*modelName).extension().string());
-        if (extension != ".md3") {
-            log.warning(label(e) + ": " + *modelName + ": only MD3 models are read by this build; model skipped");
-            continue;
-        }
-        std::optional<std::vector<uint8_t>> bytes = inputs.vfs ? inputs.vfs->read(*modelName) : std::nullopt;
-        if (!bytes) {
-            log.warning(label(e) + ": model " + *modelName + " not found");
-            continue;
-        }
-        std::vector<ModelSurface> surfaces;
-        try {
-            surfaces = parseMd3(*bytes, std::atoi(e.value("_frame", e.value("frame")).c_str()), *modelName);
-        } catch (const std::exception& err) {
-            log.warning(label(e) + ": " + err.what());
-            continue;
-        }
+        float clipDepth = inputs.clip.clipDepth;
+        if (const std::string* d = e.find("_clipdepth")) clipDepth = float(std::atof(d->c_str()));
+        bool refusedClip = false;
+        const int frame = std::atoi(e.value("_frame", e.value("frame")).c_str());
+        const std::vector<model::Surface>* surfaces = cache.get(*modelName, frame, inputs, label(e), log);
+        if (!surfaces) continue;
+        const std::optional<std::vector<model::SkinRemap>> skin = skinOf(e, *modelName, inputs.vfs, log);
         const ModelTransform transform = transformOf(e, parent.origin);
         const std::vector<Remap> remaps = remapsOf(e, log);
         const int cast = std::atoi(e.value("_castShadows", e.value("_cs", parent.source->value("_castShadows",
                                    parent.source->value("_cs", isWorld ? "1" : "0")))).c_str());
         const int receive = std::atoi(e.value("_receiveShadows", e.value("_rs", parent.source->value("_receiveShadows",
                                       parent.source->value("_rs", "1")))).c_str());
-        for (const ModelSurface& surface : surfaces) {
-            std::string shaderName = remapped(surface.shader, remaps);
+        for (const model::Surface& surface : *surfaces) {
+            std::string shaderName = surface.shader;
+            if (skin) {  // a skin names every surface drawn; the others are left out
+                const auto to = std::find_if(skin->begin(), skin->end(), [&](const model::SkinRemap& r) {
+                    return equalsNoCase(r.from, surface.shader);
+                });
+                if (to == skin->end()) continue;
+                shaderName = to->to;
+            }
+            shaderName = remapped(shaderName, remaps);
             if (inputs.renameShaders)
                 shaderName = shaderName.substr(0, shaderKey(shaderName).size()) +
                              ((spawnFlags & kRandomMapGenerator) ? "_RMG_BSP" : "_BSP");
@@ -196,12 +223,10 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             ds.mapEntityNum = parent.mapEntityNum;
             ds.castShadows = cast;
             ds.receiveShadows = receive;
-            for (const ModelVertex& v : surface.verts) {
+            for (const model::Vertex& v : surface.verts) {
                 bsp::DrawVert dv{};
                 transform.point(v.xyz).toArray(dv.xyz);
-                Vec3 n = transform.direction(v.normal);
-                normalizeInPlace(n);
-                n.toArray(dv.normal);
+                normalizedInDoubles(transform.normal(v.normal)).toArray(dv.normal);
                 if (shader.tcGen) {
                     const Vec3 p = xyzOf(dv);
                     dv.st[0] = dot(shader.tcGenVectors[0], p);
@@ -210,12 +235,25 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
                     dv.st[0] = v.st[0];
                     dv.st[1] = v.st[1];
                 }
-                for (uint8_t& c : dv.color) c = 255;
+                setColor(dv, v.color, spawnFlags & kColorToAlpha);
                 ds.verts.push_back(dv);
             }
             ds.indexes = surface.indexes;
             if (transform.leftHanded())
                 for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i + 1], ds.indexes[i + 2]);
+            if (wantsDefaultClip(spawnFlags, shader)) {
+                const ShaderInfo* debugShaders[2] = {nullptr, nullptr};
+                if (inputs.clip.debugClip)
+                    debugShaders[0] = &inputs.shaders.find("debugclip2"), debugShaders[1] = &inputs.shaders.find("debugclip");
+                ClipBrushes clip = clipBrushesForSurface(ds, shader, parent.mapEntityNum, clipDepth, inputs.clip,
+                                                         inputs.clip.debugClip ? &debugShaders : nullptr, *modelName, map.planes);
+                for (const std::string& w : clip.warnings) log.warning(w);
+                for (Brush& b : clip.brushes) clipBrushes.push_back(std::move(b));
+            } else if ((spawnFlags & kAutoclipFlags) && !refusedClip) {
+                log.warning(label(e) + ": autoclip spawnflags " + std::to_string(spawnFlags & kAutoclipFlags) +
+                            " other than 2 alone are not supported by this build; the model gets no clip brushes");
+                refusedClip = true;
+            }
             out.push_back(std::move(ds));
         }
     }

@@ -1,14 +1,17 @@
 // misc_model entities baked into a model's surfaces (q3map2 model.cpp AddTriangleModels,
 // InsertModel): every misc_model whose target names the entity (none for the world) has its model
 // loaded through the VFS, moved by its origin (less the parent's), angles and scale, its shaders
-// remapped by _remap keys, and each model surface becomes a triangle surface. MD3 models are read;
-// other formats and autoclip are refused with a warning naming the entity.
+// remapped by a _skin file and _remap keys, and each model surface becomes a triangle surface. Every
+// format of libs/model is read; spawnflag 2 (or a q3map_clipModel shader) makes clip brushes
+// (model_clip.h); the other autoclip modes and forced meta are refused with a warning naming the
+// entity, as is a missing or broken model file.
 #pragma once
 
 #include <vector>
 
 #include "bsp_brushes.h"
 #include "draw_surface.h"
+#include "model_clip.h"
 
 namespace q3 {
 class Log;
@@ -18,28 +21,20 @@ class Vfs;
 
 namespace q3::bspstage {
 
-struct ModelTransform {
-    double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};  // rotation * scale, then translation
-
-    Vec3 point(const Vec3& p) const;
-    Vec3 direction(const Vec3& d) const;  // by the inverse transpose, for normals (not normalised)
-    bool leftHanded() const;
-};
-
-// Origin, then yaw (Z), pitch (Y) and roll (X) in degrees, then scale (q3map2's euler xyz order).
-ModelTransform modelTransform(const DVec3& origin, double pitch, double yaw, double roll, const DVec3& scale);
-
 struct ModelInputs {
     const map::MapFile& file;
     const ShaderTable& shaders;
     const Vfs* vfs;  // nullptr: no model can be loaded (each one is warned about)
     // -rename (SoF2): shader names get _BSP, or _RMG_BSP with spawnflag 1, in place of an extension.
     bool renameShaders = false;
+    int maxSurfaceVerts = 999;  // imported meshes are split above this many vertices (-mv may raise it)
+    ClipOptions clip;
 };
 
-// Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity).
-// Shaders without a script are recorded in `map` under the spelling the model gives them.
+// Appends the triangle surfaces of the misc_models attached to `parent` (a LoadedMap entity), and
+// their clip brushes in the order made (see prependClipBrushes). Shaders without a script are
+// recorded in `map` under the spelling the model gives them.
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
-                      std::vector<DrawSurface>& out, Log& log);
+                      std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log);
 
 }  // namespace q3::bspstage

@@ -29,6 +29,7 @@ std::string surfaceExtraText(const std::vector<const DrawSurface*>& surfaces, in
                std::to_string(ds.verts.size()) + " I: " + std::to_string(ds.indexes.size()) + " " +
                (ds.planar ? "planar" : "") + "\n{\n";
         out += "\tshader " + map.shaderName(*ds.shader) + "\n";
+        if (ds.parentSurface >= 0) out += "\tparent " + std::to_string(ds.parentSurface) + "\n";
         if (ds.mapEntityNum != 0) out += "\tentity " + std::to_string(ds.mapEntityNum) + "\n";
         if (ds.castShadows != defaultCast) out += "\tcastShadows " + std::to_string(ds.castShadows) + "\n";
         if (ds.receiveShadows != defaultReceive) out += "\treceiveShadows " + std::to_string(ds.receiveShadows) + "\n";

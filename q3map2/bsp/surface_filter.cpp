@@ -4,24 +4,29 @@
 #include <array>
 #include <limits>
 
+#include "shader_info.h"
 #include "winding.h"
 
 namespace q3::bspstage {
 namespace {
 
+// q3map2 AddReferenceToLeaf: open leaves only, once per surface.
+int referenceLeaf(TreeNode& leaf, DrawSurface& ds, int outputNum) {
+    if (leaf.opaque) return 0;
+    if (!leaf.drawSurfaces.empty() && leaf.drawSurfaces.back() == outputNum) return 0;
+    leaf.drawSurfaces.push_back(outputNum);
+    if (leaf.skybox) ds.skybox = true;
+    if (ds.shader && ds.shader->isSky()) leaf.sky = true;
+    return 1;
+}
+
 struct Filter {
     Tree& tree;
     const PlaneSet& planes;
-    const DrawSurface& ds;
+    DrawSurface& ds;
     int outputNum;
 
-    int reference(int node) {
-        TreeNode& leaf = tree.node(node);
-        if (leaf.opaque) return 0;
-        if (!leaf.drawSurfaces.empty() && leaf.drawSurfaces.back() == outputNum) return 0;
-        leaf.drawSurfaces.push_back(outputNum);
-        return 1;
-    }
+    int reference(int node) { return referenceLeaf(tree.node(node), ds, outputNum); }
 
     int winding(const Winding& w, int node) {
         const TreeNode& n = tree.node(node);
@@ -102,7 +107,18 @@ std::array<DVec3, 16> subPatchHull(const DrawSurface& ds, int x, int y) {
 
 }  // namespace
 
-int filterSurfaceIntoTree(const DrawSurface& ds, Tree& tree, const PlaneSet& planes, int outputNum) {
+int addSkyboxReferences(DrawSurface& ds, Tree& tree, int outputNum) {
+    int refs = 0;
+    tree.forEachLeaf([&](int n) {
+        TreeNode& leaf = tree.node(n);
+        if (!leaf.sky) return;
+        for (const bsp::DrawVert& v : ds.verts) leaf.bounds.add(pointOf(v));
+        refs += referenceLeaf(leaf, ds, outputNum);
+    });
+    return refs;
+}
+
+int filterSurfaceIntoTree(DrawSurface& ds, Tree& tree, const PlaneSet& planes, int outputNum) {
     Filter f{tree, planes, ds, outputNum};
     switch (ds.kind) {
         case SurfaceKind::Face:

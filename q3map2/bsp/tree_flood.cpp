@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "log.h"
+#include "script.h"
 #include "shader_info.h"
 #include "tree_portals.h"
 
@@ -19,14 +20,16 @@ int leafAt(const Tree& tree, const PlaneSet& planes, const DVec3& point) {
 }
 
 // Breadth-first, remembering each leaf's step count; leaves reached earlier by a longer path are
-// revisited so that the leak line is as short as possible.
-int floodFrom(Tree& tree, int start) {
+// revisited so that the leak line is as short as possible. A _skybox entity's flood marks every
+// node it reaches, solid ones and ones it does not go on from included, as q3map2's does.
+int floodFrom(Tree& tree, int start, bool skybox) {
     int flooded = 0;
     int step = 1;
     std::vector<int> current{start}, next;
     while (!current.empty()) {
         for (int n : current) {
             TreeNode& node = tree.node(n);
+            if (skybox) node.skybox = true;
             if (node.opaque || (node.occupied && node.occupied <= step)) continue;
             if (!node.occupied) ++flooded;
             node.occupied = step;
@@ -62,8 +65,10 @@ FloodResult floodEntities(Tree& tree, const std::vector<BspEntity>& entities, co
             log.warning("Entity " + std::to_string(e.mapEntityNum) + " (" + e.classname + "): Entity in solid");
             continue;
         }
+        const bool skybox = equalsNoCase(e.classname, "_skybox");
         tree.node(leaf).occupant = int(i);
-        flooded += floodFrom(tree, leaf);
+        tree.node(leaf).skybox = skybox;  // any entity's own leaf takes its entity's say
+        flooded += floodFrom(tree, leaf, skybox);
         inside = true;
     }
     if (counts) counts->floodedLeafs = flooded;
@@ -115,6 +120,7 @@ std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entitie
 
 int floodAreas(Tree& tree) {
     int areas = 0;
+    int skyboxArea = -1;  // the last area numbered with a _skybox leaf in it
     tree.forEachLeaf([&](int start) {
         if (tree.node(start).opaque || tree.node(start).area != -1) return;
         std::vector<int> stack{start};
@@ -124,6 +130,7 @@ int floodAreas(Tree& tree) {
             TreeNode& node = tree.node(n);
             if (node.area != -1 || node.cluster == -1) continue;
             node.area = areas;
+            if (node.skybox) skyboxArea = areas;
             tree.forEachPortal(n, [&](int p) {
                 const Portal& portal = tree.portal(p);
                 if (portal.compileFlags & compileflags::AreaPortal) return;  // areaportals separate areas
@@ -133,6 +140,11 @@ int floodAreas(Tree& tree) {
         }
         ++areas;
     });
+    if (skyboxArea >= 0)
+        tree.forEachLeaf([&](int n) {
+            TreeNode& node = tree.node(n);
+            if (!node.opaque && node.area == skyboxArea) node.skybox = true;
+        });
     return areas;
 }
 

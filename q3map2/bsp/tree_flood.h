@@ -44,8 +44,8 @@ FillCounts fillOutside(Tree& tree);
 // outside was not reached. `leakingEntity` gets the entity index at the end of the line.
 std::string leakLineText(const Tree& tree, const std::vector<BspEntity>& entities, int* leakingEntity = nullptr);
 
-// Area numbers for open leaves (needs clusters: leaves with cluster -1 get none). Returns the
-// number of areas.
+// Area numbers for open leaves (needs clusters: leaves with cluster -1 get none); every open leaf
+// of the last area holding a _skybox leaf becomes a _skybox leaf too. Returns the number of areas.
 int floodAreas(Tree& tree);
 
 }  // namespace q3::bspstage

@@ -69,6 +69,8 @@ struct LightContext {
     SkyVisibility skyVisibility;         // skies each cluster may see (sun culling)
     std::unique_ptr<TraceScene> scene;
     std::vector<Light> lights;
+    // q3map2's rand() sequence as light creation left it; the legacy grid's nudges continue it.
+    CLibraryRandom random;
     std::vector<std::vector<Light>> bounceLights;  // -bounce: the emitters of each radiosity pass
     // Floodlight and dirt (luxel_passes.h), prepared once by the stage for lightmaps and vertexes;
     // null when neither is in use.

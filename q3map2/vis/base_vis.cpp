@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <string>
 
@@ -33,11 +34,38 @@ struct PortalBound {
     bool removed;
 };
 
-// By the bounding spheres alone, q cannot reach in front of p or p cannot reach behind q.
-bool spheresRuleOut(const PortalBound& p, const PortalBound& q) {
-    return p.plane.distanceTo(q.origin) + q.radius < kOnEpsilon - kSphereSlack ||
-           q.plane.distanceTo(p.origin) - p.radius > -kOnEpsilon + kSphereSlack;
-}
+// The planes and spheres of all portals, one array per number, so that the test of one portal's
+// sphere against all planes (and of its plane against all spheres) runs several portals at once.
+struct SphereColumns {
+    std::vector<float> nx, ny, nz, dist, ox, oy, oz, radius;
+
+    explicit SphereColumns(const std::vector<PortalBound>& bounds) {
+        for (const PortalBound& b : bounds) {
+            nx.push_back(b.plane.normal.x);
+            ny.push_back(b.plane.normal.y);
+            nz.push_back(b.plane.normal.z);
+            dist.push_back(b.plane.dist);
+            ox.push_back(b.origin.x);
+            oy.push_back(b.origin.y);
+            oz.push_back(b.origin.z);
+            radius.push_back(b.radius);
+        }
+    }
+
+    // maybe[j] = 0 when, by the bounding spheres alone, portal j cannot reach in front of p or p
+    // cannot reach behind j; 1 otherwise. The sums are those of Plane::distanceTo, term by term.
+    void spheresMayFace(const PortalBound& p, std::vector<int32_t>& maybe) const {
+        const float px = p.plane.normal.x, py = p.plane.normal.y, pz = p.plane.normal.z, pd = p.plane.dist;
+        const float ax = p.origin.x, ay = p.origin.y, az = p.origin.z, pr = p.radius;
+        const size_t n = nx.size();
+        maybe.resize(n);
+        for (size_t j = 0; j < n; ++j) {
+            const float jInFront = px * ox[j] + py * oy[j] + pz * oz[j] - pd + radius[j];
+            const float pBehind = nx[j] * ax + ny[j] * ay + nz[j] * az - dist[j] - pr;
+            maybe[j] = (jInFront >= kOnEpsilon - kSphereSlack) & (pBehind <= -kOnEpsilon + kSphereSlack);
+        }
+    }
+};
 
 // q's winding reaches in front of p's plane, and p's winding reaches behind q's plane. The points
 // are only looked at when a sphere straddles the plane.
@@ -100,10 +128,12 @@ BaseVis computeBaseVis(const VisGraph& graph, const FarPlane& farPlane, const st
         const VisPortal& p = graph.portals[i];
         bounds[i] = {p.plane, p.origin, p.radius, p.leaf, p.removed};
     }
+    const SphereColumns columns(bounds);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& range) {
         std::vector<uint64_t> front(base.flood.words());
         std::vector<int> pending;
         std::vector<uint8_t> reached(graph.leafs.size());
+        std::vector<int32_t> maybe;
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const VisPortal& p = graph.portals[i];
             if (p.removed) {
@@ -111,8 +141,9 @@ BaseVis computeBaseVis(const VisGraph& graph, const FarPlane& farPlane, const st
                 continue;
             }
             std::fill(front.begin(), front.end(), 0);
+            columns.spheresMayFace(bounds[i], maybe);
             for (size_t j = 0; j < n; ++j) {
-                if (j == i || bounds[j].removed || spheresRuleOut(bounds[i], bounds[j])) continue;
+                if (!maybe[j] || j == i || bounds[j].removed) continue;
                 const VisPortal& q = graph.portals[j];
                 if (beyondFarPlane(p, q, farPlane)) continue;
                 if (facesForward(p, bounds[i], q, bounds[j])) setBit(front.data(), j);

@@ -16,15 +16,16 @@ namespace q3::vis {
 
 class ClusterKnowledge {
 public:
-    explicit ClusterKnowledge(const VisGraph& graph);
+    // `results`: per portal, the clusters it sees, read once all portals of a cluster are done.
+    ClusterKnowledge(const VisGraph& graph, const BitMatrix& results);
 
     // The cluster whose portal list holds `portal`, or -1 when none or several do (-hint lets
     // a leaf merged away merge again, and its old portal list with it).
     int home(int portal) const { return home_[static_cast<size_t>(portal)]; }
 
-    // Records a finished portal and `seen`, its row of clusters. Calls in a fixed order give the
-    // same knowledge at any thread count.
-    void learn(int portal, const uint64_t* seen);
+    // Records a finished portal (its row of `results`). Calls in a fixed order give the same
+    // knowledge at any thread count.
+    void learn(int portal);
 
     // The clusters `cluster` is known to see.
     const uint64_t* seen(int cluster) const { return seen_.row(static_cast<size_t>(cluster)); }
@@ -33,11 +34,11 @@ public:
 
 private:
     const VisGraph& graph_;
+    const BitMatrix& results_;
     std::vector<std::vector<int>> holders_;  // per portal: the clusters (not merged away) listing it
     std::vector<int> home_;
     BitMatrix seen_;
     BitMatrix possible_;
-    BitMatrix rows_;                 // per cluster: the union of its finished portals' rows
     std::vector<int> portalsLeft_;  // per cluster: portals not finished yet
 };
 

@@ -98,17 +98,22 @@ private:
         return *scratch_.levels[depth];
     }
 
-    // Finished results of earlier waves prune harder than the base flood.
-    const uint64_t* mask(int portal) const {
-        const size_t p = static_cast<size_t>(portal);
-        return s_.waveOf[p] < currentWave_ ? s_.clusterVis.row(p) : s_.floodClusters.row(p);
-    }
+    bool finished(int portal) const { return s_.waveOf[static_cast<size_t>(portal)] < currentWave_; }
 
     // next = prev & mask [& passage]; true when next holds a cluster not yet marked visible.
     // Most candidates have nothing new behind them: the words are only trimmed for those that do.
     bool narrow(const FlowLevel& prev, FlowLevel& next, int portal, const uint64_t* passage) const {
+        // Finished results of earlier waves prune harder than the base flood. A passage only
+        // holds clusters of the base flood of the portal it leads through, so that flood adds
+        // nothing to it.
+        const size_t p = static_cast<size_t>(portal);
+        const uint64_t* mask = s_.floodClusters.row(p);
+        if (finished(portal))
+            mask = s_.clusterVis.row(p);
+        else if (passage)
+            std::swap(mask, passage), passage = nullptr;
         const uint64_t* __restrict in = prev.mightSee.data();
-        const uint64_t* __restrict m = mask(portal);
+        const uint64_t* __restrict m = mask;
         const uint64_t* __restrict seen = vis_;
         uint64_t* __restrict out = next.mightSee.data();
         const size_t begin = prev.first, end = prev.last;
@@ -274,7 +279,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
         }
     }
     const std::vector<Box> clusterBounds = clusterPortalBounds(graph);
-    ClusterKnowledge known(graph);
+    ClusterKnowledge known(graph, clusterVis);
     FlowShared shared{graph, exits, clusterBounds, floodClusters, passages, options.mode, clusterVis, known, waveOf};
     tbb::enumerable_thread_specific<FlowScratch> scratch;
     for (size_t w = 0; w + 1 < bounds.size(); ++w) {
@@ -297,7 +302,7 @@ BitMatrix computePortalFlow(const VisGraph& graph, const BaseVis& base, const Pa
         if (options.mode == FlowMode::Passage) continue;
         for (int portal : wave)
             if (!graph.portals[static_cast<size_t>(portal)].removed)
-                known.learn(portal, clusterVis.row(static_cast<size_t>(portal)));
+                known.learn(portal);
     }
     return clusterVis;
 }

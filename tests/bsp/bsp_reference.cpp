@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "bsp_samples.h"
 #include "bsp_stage.h"
 #include "conformance_pipeline.h"
 #include "file_io.h"
@@ -72,6 +75,28 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     fs::rename(work / "keep", final, ec);  // another process may have put its copy there first
     fs::remove_all(work);
     return final;
+}
+
+fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
+    fs::remove_all(work);
+    fs::create_directories(work);
+    fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
+    std::string options;
+    for (const std::string& arg : sampleOptions(name)) options += " " + shellQuote(arg);
+    std::string output;
+    const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
+                                      " -fs_basegame samples -bsp" + options + " " +
+                                      shellQuote(work / "samples/maps" / (name + ".map")),
+                                  &output);
+    EXPECT_EQ(status, 0) << output;
+    return work / "samples/maps";
+}
+
+fs::path oacmpSource(const std::string& name) {
+    for (const fs::path& p : oacmpMapSources())
+        if (p.stem() == name) return p;
+    ADD_FAILURE() << name << ".map is not among the oacmp sources";
+    return {};
 }
 
 const ShaderTable& openArenaShaders() {

@@ -21,6 +21,14 @@ std::filesystem::path referenceCompile(const std::filesystem::path& reference, c
 std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const std::filesystem::path& work,
                                  const BspOptions& options = {}, std::string* log = nullptr);
 
+// The reference's -bsp of the sample `name` (bsp-samples, with the sample's options) in `work`/samples/maps/, uncached
+// (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
+std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
+                                             const std::filesystem::path& work);
+
+// The .map source of an oacmp map by name ("oacmpdm7"); fails the test when it is missing.
+std::filesystem::path oacmpSource(const std::string& name);
+
 // Every shader of the OpenArena data (loaded once).
 const ShaderTable& openArenaShaders();
 

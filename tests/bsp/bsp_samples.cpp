@@ -41,7 +41,7 @@ std::vector<std::string> sampleOptions(const std::string& name) {
     return args;
 }
 
-fs::path compileSample(const std::string& name, const fs::path& work) {
+fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
@@ -54,8 +54,8 @@ fs::path compileSample(const std::string& name, const fs::path& work) {
     for (const std::string& arg : args) common.commandLine += " " + arg;
     BspOptions options;
     cli::parseOptions(bspOptionTable(), args, cli::ParseContext{}, options);
-    Log log(false);
-    runBspStage(options, common, log);
+    Log quiet(false);
+    runBspStage(options, common, log ? *log : quiet);
     return work / "samples" / "maps";
 }
 

@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+namespace q3 {
+class Log;
+}
+
 namespace q3::bspstage::test {
 
 std::filesystem::path samplesRoot();  // bsp-samples/
@@ -20,7 +24,7 @@ std::vector<std::string> sampleOutputExtensions(const std::filesystem::path& dir
 std::vector<std::string> sampleOptions(const std::string& name);
 
 // Copies the sample game folder under `work` and runs -bsp on the sample there (quiet); returns the
-// folder holding the outputs. Throws what the stage throws.
-std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work);
+// folder holding the outputs. Throws what the stage throws. Messages go to `log` when given.
+std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work, Log* log = nullptr);
 
 }  // namespace q3::bspstage::test

@@ -4,6 +4,9 @@
 
 #include <unistd.h>
 
+#include <array>
+#include <sstream>
+
 #include "bsp_samples.h"
 #include "bsp_stage.h"
 #include "log.h"
@@ -69,6 +72,34 @@ TEST(BspOnlyEnts, ReplacesTheEntityLumpOnly) {
     EXPECT_EQ(entities[0].value("message"), "edited room");
     EXPECT_EQ(entities[0].value("_q3map2_cmdline"), "-bsp");  // the compile's, not -onlyents'
     EXPECT_EQ(entities.size(), bsp::parseEntities(before.entities, "before").size());
+    fs::remove_all(work);
+}
+
+// The leaking sample: q3map2's leak messages name the entity the outside reached (the light, entity
+// 2), and the .lin runs from outside the world's brushes to that entity's origin; the sealed
+// samples write a .prt and no .lin.
+TEST(BspLeak, LineRunsFromOutsideToTheNamedEntity) {
+    const fs::path work = fs::temp_directory_path() / ("bsp-leak-" + std::to_string(::getpid()));
+    Log log(false);
+    std::string messages;
+    log.addSink([&](LogLevel, std::string_view text) { messages += std::string(text) + "\n"; });
+    const fs::path out = compileSample("leaking_room", work, &log);
+    EXPECT_NE(messages.find("******* leaked *******"), std::string::npos) << messages;
+    EXPECT_NE(messages.find("Entity 2, Brush 0: Entity leaked"), std::string::npos) << messages;
+    ASSERT_TRUE(fs::exists(out / "leaking_room.lin"));
+    EXPECT_FALSE(fs::exists(out / "leaking_room.prt"));
+    std::vector<std::array<double, 3>> points;
+    std::istringstream lines(readFileText(out / "leaking_room.lin"));
+    for (std::array<double, 3> p; lines >> p[0] >> p[1] >> p[2];) points.push_back(p);
+    ASSERT_GE(points.size(), 2u);
+    EXPECT_EQ(points.back(), (std::array<double, 3>{256, 256, 200})) << "ends at the light's origin";
+    // The room's brushes span -16..528 on X and Y, -16..272 on Z.
+    const std::array<double, 3> first = points.front();
+    EXPECT_TRUE(first[0] > 528 || first[0] < -16 || first[1] > 528 || first[1] < -16 || first[2] > 272 || first[2] < -16)
+        << "starts outside: " << first[0] << " " << first[1] << " " << first[2];
+    const fs::path sealed = compileSample("box_room", work / "sealed");
+    EXPECT_TRUE(fs::exists(sealed / "box_room.prt"));
+    EXPECT_FALSE(fs::exists(sealed / "box_room.lin"));
     fs::remove_all(work);
 }
 

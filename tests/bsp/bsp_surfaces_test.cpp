@@ -14,8 +14,9 @@
 #include "face_surfaces.h"
 #include "file_io.h"
 #include "max_area_triangles.h"
-#include "md3_model.h"
+#include "model_test_files.h"
 #include "model_surfaces.h"
+#include "model_transform.h"
 #include "patch_surfaces.h"
 #include "srf_writer.h"
 #include "structure_emit.h"
@@ -262,65 +263,12 @@ TEST(TJunctions, NearlyCoincidentVerticesAreWelded) {
     EXPECT_EQ(surfaces[1].kind, SurfaceKind::Bad);
 }
 
-// An MD3 image with one surface of `verts` vertices (x in 1/64 units) and the given triangles.
-std::vector<uint8_t> md3Image(const std::vector<std::array<int16_t, 3>>& verts, const std::vector<std::array<int32_t, 3>>& tris,
-                              const std::vector<std::array<float, 2>>& st) {
-    std::vector<uint8_t> out(108, 0);
-    auto put = [&](size_t at, const void* data, size_t size) {
-        if (out.size() < at + size) out.resize(at + size);
-        std::memcpy(out.data() + at, data, size);
-    };
-    auto putInt = [&](size_t at, int32_t v) { put(at, &v, 4); };
-    put(0, "IDP3", 4);
-    putInt(4, 15);
-    putInt(76, 1);    // frames
-    putInt(84, 1);    // surfaces
-    putInt(100, 108); // surfaces offset
-    const size_t s = 108;
-    const int32_t headerSize = 108, shadersAt = headerSize, trisAt = shadersAt + 68;
-    const int32_t stAt = trisAt + int32_t(tris.size()) * 12, xyzAt = stAt + int32_t(verts.size()) * 8;
-    const int32_t end = xyzAt + int32_t(verts.size()) * 8;
-    put(s, "IDP3", 4);
-    put(s + 4, "body", 4);
-    putInt(s + 72, 1);
-    putInt(s + 76, 1);
-    putInt(s + 80, int32_t(verts.size()));
-    putInt(s + 84, int32_t(tris.size()));
-    putInt(s + 88, trisAt);
-    putInt(s + 92, shadersAt);
-    putInt(s + 96, stAt);
-    putInt(s + 100, xyzAt);
-    putInt(s + 104, end);
-    put(s + size_t(shadersAt), "models/test/skin.tga", 20);
-    out.resize(s + size_t(end), 0);
-    for (size_t i = 0; i < tris.size(); ++i) put(s + size_t(trisAt) + i * 12, tris[i].data(), 12);
-    for (size_t i = 0; i < verts.size(); ++i) {
-        put(s + size_t(stAt) + i * 8, st[i].data(), 8);
-        put(s + size_t(xyzAt) + i * 8, verts[i].data(), 6);  // normal 0: lat 0, lng 0 = +Z
-    }
-    return out;
-}
-
-TEST(Md3Model, VerticesInTriangleOrderAndDuplicatesJoined) {
-    // Vertex 3 repeats vertex 1: the importer keeps one of them.
-    const auto bytes = md3Image({{0, 0, 0}, {64, 0, 0}, {0, 64, 0}, {64, 0, 0}}, {{0, 2, 1}, {2, 3, 0}},
-                                {{{0, 0}}, {{1, 0}}, {{0, 1}}, {{1, 0}}});
-    const std::vector<ModelSurface> surfaces = parseMd3(bytes, 0, "test.md3");
-    ASSERT_EQ(surfaces.size(), 1u);
-    EXPECT_EQ(surfaces[0].shader, "models/test/skin.tga");
-    ASSERT_EQ(surfaces[0].verts.size(), 3u);
-    EXPECT_EQ(surfaces[0].verts[1].xyz, (Vec3{0, 1, 0}));  // file vertex 2 is used second
-    EXPECT_EQ(surfaces[0].indexes, (std::vector<int>{0, 1, 2, 1, 2, 0}));
-    EXPECT_NEAR(surfaces[0].verts[0].normal.z, 1.0f, 1e-6);
-    EXPECT_THROW(parseMd3(std::vector<uint8_t>(50, 0), 0, "short.md3"), std::runtime_error);
-}
-
 TEST(ModelSurfaces, RenameAppendsBspOrRmgBspToTheShaderName) {
     // A game folder with one model, read through the VFS as a compile would.
     const std::filesystem::path root =
         std::filesystem::temp_directory_path() / ("q3bsp-rename-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     std::filesystem::create_directories(root / "baseq3/models/test");
-    const auto bytes = md3Image({{0, 0, 0}, {64, 0, 0}, {0, 64, 0}}, {{0, 2, 1}}, {{{0, 0}}, {{1, 0}}, {{0, 1}}});
+    const auto bytes = model::test::md3Image({{0, 0, 0}, {64, 0, 0}, {0, 64, 0}}, {{0, 2, 1}}, {{{0, 0}}, {{1, 0}}, {{0, 1}}});
     writeFileAtomic(root / "baseq3/models/test/box.md3", std::string(bytes.begin(), bytes.end()));
     static Log log(false);
     static const ShaderTable shaders = test::commonShaders(log);
@@ -335,8 +283,9 @@ TEST(ModelSurfaces, RenameAppendsBspOrRmgBspToTheShaderName) {
         "test.map");
     LoadedMap map = loadMapForBsp(file, shaders, {}, log);
     std::vector<DrawSurface> plain, renamed;
-    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs}, plain, log);
-    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs, true}, renamed, log);
+    std::vector<Brush> clip;
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs}, plain, clip, log);
+    addModelSurfaces(map.entities[0], true, map, {file, shaders, &vfs, true}, renamed, clip, log);
     std::filesystem::remove_all(root);
     ASSERT_EQ(plain.size(), 2u);
     ASSERT_EQ(renamed.size(), 2u);
@@ -346,13 +295,13 @@ TEST(ModelSurfaces, RenameAppendsBspOrRmgBspToTheShaderName) {
 }
 
 TEST(ModelTransform, YawThenScaleThenOrigin) {
-    const ModelTransform t = modelTransform({100, 0, 0}, 0, 90, 0, {2, 2, 2});
+    const ModelTransform t = ModelTransform::place({100, 0, 0}, 0, 90, 0, {2, 2, 2});
     const Vec3 p = t.point({1, 0, 0});
     EXPECT_NEAR(p.x, 100, 1e-5);
     EXPECT_NEAR(p.y, 2, 1e-5);
     EXPECT_FALSE(t.leftHanded());
-    EXPECT_TRUE(modelTransform({}, 0, 0, 0, {-1, 1, 1}).leftHanded());
-    Vec3 n = t.direction({0, 1, 0});
+    EXPECT_TRUE(ModelTransform::place({}, 0, 0, 0, {-1, 1, 1}).leftHanded());
+    Vec3 n = t.normal({0, 1, 0});
     normalizeInPlace(n);
     EXPECT_NEAR(n.x, -1, 1e-5);
 }

@@ -31,6 +31,9 @@ struct Limits {
     double gridAmbientCorrelation = 0.98;   // per-point sums
     double gridDirectedCorrelation = 0.98;
     double gridDirection = 0.95;          // share of lit points within 15 degrees of the reference
+    // Over every point, against the reference's -threads 1 run, whose in-solid points ours places
+    // the same way (ambient and directed).
+    double gridOneThreadCorrelation = 0.98;
     double vertexRatio = 0.05;            // |ratio - 1|
     double lightmappedCount = 0.02;       // |ours - reference| / reference lightmapped surfaces
 };
@@ -49,39 +52,38 @@ void PrintTo(const MapCase& c, std::ostream* os) {
 
 std::vector<MapCase> cases() {
     std::vector<MapCase> out;
-    // Every tolerance of the issue holds (measured at -fast): lightmaps 1.014, correlation 0.9997,
-    // classes within 3.3 % (patch 1.033), vertex colours 1.028, grid 1.007 / 1.006, correlations
-    // 0.998 / 0.9995, directions 99.2 %.
+    // Every tolerance of the issue holds (measured at -fast): lightmaps 1.013, correlation 0.9997,
+    // classes within 3.3 % (patch 1.033), vertex colours 1.027, grid 1.007 / 1.005, correlations
+    // 0.998 / 0.9994, directions 99.0 %.
     out.push_back(MapCase{"oacmpdm1", {"-fast"}, {}});
-    // Every tolerance holds: lightmaps 1.004, correlation 0.9950, classes within 1.2 %, grid
-    // 0.998 / 0.997, correlations 0.9997 / 0.998, directions 99.2 %, vertex colours 1.000.
+    // Every tolerance holds: lightmaps 0.996, correlation 0.9957, classes within 1.6 % (shadow
+    // 0.984), grid 1.000 / 1.000, correlations 0.9997 / 0.9996, directions 99.9 %, vertex colours
+    // 1.000.
     out.push_back(MapCase{"oacmpdm5", {"-fast"}, {}});
     {
-        // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights.
-        // Measured at -fast: lightmaps 1.006, correlation 0.997, classes within 0.2 %, grid 1.002 /
-        // 0.999, directed correlation 0.998, directions 99.1 %; the ambient correlation 0.94 ..
-        // 0.999 over runs. 71 % of its grid lies in solid, the reference's two runs agree on a
-        // quarter of the points only, and which quarter (its random nudges) moves that figure and
-        // the ambient total by a few percent.
+        // 1,400 area lights (ceiling fixtures with a q3map_lightimage colour) and few entity lights;
+        // 71 % of its grid lies in solid, where q3map2 nudges points at random. Measured at -fast:
+        // lightmaps 1.005, correlation 0.997, classes within 0.1 %, grid 0.999 / 0.999,
+        // correlations 1.000 / 1.000, directions 99.6 %; against the -threads 1 reference's whole
+        // grid 0.9999 / 0.9998 (0.87 / 0.98 while in-solid points took a fixed search).
         MapCase c{"oacmpctf2", {"-fast"}, {}};
-        c.limits.gridAmbient = 0.05;
-        c.limits.gridAmbientCorrelation = 0.80;
+        c.limits.gridOneThreadCorrelation = 0.999;
         out.push_back(c);
     }
-    // Radiosity: every tolerance holds (lightmaps 1.000, correlation 0.995, shadow class 0.957,
-    // vertex colours 1.000, grid 1.000 / 1.000).
+    // Radiosity: every tolerance holds (lightmaps 0.995, correlation 0.995, shadow class 0.952,
+    // vertex colours 0.999, grid 1.000 / 1.000).
     out.push_back(MapCase{"oacmpdm5", {"-fast", "-bounce", "1"}, {}});
-    // Dirtmapping: every tolerance holds (lightmaps 1.008, correlation 0.9996, patch class 1.036,
+    // Dirtmapping: every tolerance holds (lightmaps 1.008, correlation 0.9997, patch class 1.036,
     // vertex colours 1.045, grid 1.008 / 1.006).
     out.push_back(MapCase{"oacmpdm1", {"-fast", "-dirty"}, {}});
     // Sun and sky light: the only map here with a sky-lit class. Every tolerance holds (measured at
-    // -fast): lightmaps 1.000, correlation 0.9994, shadow 0.994 (thin ceiling strips whose twin
-    // lightmaps share texels), patch 1.024, vertex colours 1.007, grid 1.001 / 1.001.
+    // -fast): lightmaps 0.999, correlation 0.9995, shadow 0.984 (thin ceiling strips whose twin
+    // lightmaps share texels), patch 1.023, vertex colours 0.996, grid 1.000 / 0.999.
     out.push_back(MapCase{"oacmpdm4", {"-fast"}, {}});
     {
         // Adaptive sub-sampling: a luxel's sub-samples test the PVS with the first one's cluster,
         // so those after a first one in solid see no light but the sun's. Measured at -fast
-        // -samples 2: lightmaps 1.010, correlation 0.9997 (1.030 and 0.995 while each sub-sample
+        // -samples 2: lightmaps 1.011, correlation 0.9997 (1.030 and 0.995 while each sub-sample
         // used its own cluster).
         MapCase c{"oacmpdm1", {"-fast", "-samples", "2"}, {}};
         c.limits.lightmapRatio = 0.02;
@@ -90,7 +92,7 @@ std::vector<MapCase> cases() {
     }
     // -compensate 2 halves the light into bytes: q3map2 finds solid and twin lightmaps on the light,
     // so its tolerances span half as many bytes. Every tolerance holds: lightmaps 1.012,
-    // correlation 0.9998, shadow class 1.033 (0.932 while twins were found on bytes).
+    // correlation 0.9998, shadow class 1.032 (0.932 while twins were found on bytes).
     out.push_back(MapCase{"oacmpdm1", {"-fast", "-compensate", "2"}, {}});
     return out;
 }
@@ -168,6 +170,10 @@ TEST_P(LightConformance, OursMatchesTheReference) {
     EXPECT_GE(g.agreed.ambientCorrelation, lim.gridAmbientCorrelation) << "grid ambient correlation";
     EXPECT_GE(g.agreed.directedCorrelation, lim.gridDirectedCorrelation) << "grid directed correlation";
     EXPECT_GE(g.agreed.directionFraction, lim.gridDirection) << "grid directions within 15 degrees";
+
+    const GridFigures oneThread = compareGrids(ref2Lit.bsp.lightGrid, ourLit.bsp.lightGrid, nullptr);
+    EXPECT_GE(oneThread.all.ambientCorrelation, lim.gridOneThreadCorrelation) << "grid ambient, -threads 1";
+    EXPECT_GE(oneThread.all.directedCorrelation, lim.gridOneThreadCorrelation) << "grid directed, -threads 1";
 
     if (c.vertexes.vertexes > 0) {
         EXPECT_LE(std::abs(c.vertexes.ratio - 1), lim.vertexRatio) << "vertex colours";

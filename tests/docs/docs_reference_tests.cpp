@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bsp_options.h"
 #include "common_option_table.h"
 #include "info_stage.h"
 #include "json_stage.h"
@@ -57,6 +58,7 @@ TEST(DocsReference, EveryImplementedOptionIsInTheUserGuide) {
     expectDocumented(cli::describe(shtools::shCubemapOptionTable()), "-shcubemap");
     expectDocumented(cli::describe(light::pictureStageOptionTable()), "-export/-import");
     expectDocumented(cli::describe(vis::visOptionTable()), "-vis");
+    expectDocumented(cli::describe(bspstage::bspOptionTable()), "-bsp");
 }
 
 TEST(DocsReference, EveryStageOfThisBuildHasASection) {
@@ -64,7 +66,7 @@ TEST(DocsReference, EveryStageOfThisBuildHasASection) {
     std::istringstream in(userGuide());
     for (std::string line; std::getline(in, line);)
         if (line.rfind("### ", 0) == 0) headings.push_back(line);
-    for (const char* stage : {"-info", "-vis", "-light", "-json", "-shprobe", "-shimage", "-shcubemap", "-export", "-import"}) {
+    for (const char* stage : {"-bsp", "-info", "-vis", "-light", "-json", "-shprobe", "-shimage", "-shcubemap", "-export", "-import"}) {
         bool found = false;
         for (const std::string& heading : headings) found = found || mentions(heading, stage);
         EXPECT_TRUE(found) << "no ### heading names `" << stage << "`";

@@ -7,6 +7,7 @@
 
 #include "angle.h"
 #include "bsp_tree.h"
+#include "grid_encode.h"
 #include "light_contribution.h"
 #include "light_test_util.h"
 #include "trace_scene.h"
@@ -422,6 +423,23 @@ TEST(GridPoint, PointLightHasNoAngleTerm) {
     l.affectsSurfaces = false;
     EXPECT_FALSE(lightToSample(l, floorSample({0, 0, 0}), env));
     EXPECT_TRUE(lightToGridPoint(l, {0, 0, 0}, -1, env));
+}
+
+TEST(GridPoint, LightOnThePointGoesToTheAmbient) {
+    // q3map2 normalises the zero vector to zero: a light on the grid point (oacmpdm3 has a row of
+    // them) adds nothing to the main direction and a quarter of its light to the ambient.
+    LightingEnv env;
+    auto on = lightToGridPoint(pointLight({0, 0, 0}, 300), {0, 0, 0}, -1, env);
+    ASSERT_TRUE(on);
+    EXPECT_EQ(on->direction, (Vec3{}));
+    EXPECT_FLOAT_EQ(on->color.x, 300 * 7500.0f / (16 * 16));  // distance clamped to 16
+    auto beside = lightToGridPoint(pointLight({100, 0, 0}, 300), {0, 0, 0}, -1, env);
+    ASSERT_TRUE(beside);
+    const std::vector<LightContribution> both{*on, *beside};
+    const GridSample sample = accumulateGridSample(both, {}, GridOptions{});
+    EXPECT_EQ(sample.direction, (Vec3{1, 0, 0}));
+    EXPECT_FLOAT_EQ(sample.directed.x, 225.0f);
+    EXPECT_FLOAT_EQ(sample.ambient.x, 0.25f * on->color.x);
 }
 
 TEST(GridPoint, NearOccludersAreNotIgnored) {

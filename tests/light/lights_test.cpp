@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "light_test_util.h"
+#include "light_reach.h"
 #include "lights.h"
 
 namespace q3::light {
@@ -13,7 +16,8 @@ using test::entity;
 
 std::vector<Light> lightsOf(const std::vector<bsp::Entity>& ents, const LightScales& scales = {}) {
     test::CapturingLog cap;
-    return createEntityLights(ents, ents, scales, cap.log, "test.bsp");
+    CLibraryRandom random;
+    return createEntityLights(ents, ents, scales, cap.log, "test.bsp", random);
 }
 
 TEST(EntityLights, DefaultPointLightUsesPointScaleAndWhite) {
@@ -92,7 +96,8 @@ TEST(EntityLights, SpotlightFromTarget) {
 TEST(EntityLights, MissingTargetWarnsAndStaysPoint) {
     test::CapturingLog cap;
     std::vector<bsp::Entity> ents{entity({{"classname", "light"}, {"target", "nowhere"}})};
-    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp");
+    CLibraryRandom random;
+    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp", random);
     ASSERT_EQ(lights.size(), 1u);
     EXPECT_EQ(lights[0].type, LightType::Point);
     ASSERT_EQ(cap.warnings.size(), 1u);
@@ -119,7 +124,8 @@ TEST(EntityLights, SamplesJitterDeterministicallyAndSplitIntensity) {
 TEST(EntityLights, InvalidStyleIsAnError) {
     std::vector<bsp::Entity> ents{entity({{"classname", "light"}, {"style", "300"}})};
     test::CapturingLog cap;
-    EXPECT_THROW(createEntityLights(ents, ents, {}, cap.log, "test.bsp"), CompileError);
+    CLibraryRandom random;
+    EXPECT_THROW(createEntityLights(ents, ents, {}, cap.log, "test.bsp", random), CompileError);
     auto ok = lightsOf({entity({{"classname", "light"}, {"_style", "5"}})});
     EXPECT_EQ(ok[0].style, 5);
 }
@@ -177,7 +183,8 @@ TEST(ControlledLights, ClampsWithWarningsNamingEntityAndKey) {
                                           {"angle_penumbra", "30"},
                                           {"spherical_ambient", "1.5"},
                                           {"_color", "2 1 0"}})};
-    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp");
+    CLibraryRandom random;
+    auto lights = createEntityLights(ents, ents, {}, cap.log, "test.bsp", random);
     ASSERT_EQ(lights.size(), 1u);
     const ControlledParams& p = *lights[0].controlled;
     EXPECT_FLOAT_EQ(p.brightness, 1);
@@ -247,8 +254,9 @@ TEST(SunLights, ShaderSunSamplesAndScale) {
     sun.devianceDeg = 2;
     sun.filterRadius = 8;
     std::vector<Light> a, b;
-    appendSunLights(a, sun, 3, scales, 42);
-    appendSunLights(b, sun, 3, scales, 42);
+    CLibraryRandom first, second;
+    appendSunLights(a, sun, 3, scales, first);
+    appendSunLights(b, sun, 3, scales, second);
     ASSERT_EQ(a.size(), 4u);
     EXPECT_NEAR(a[0].normal.x, sun.direction.x, 1e-6);
     EXPECT_NEAR(a[0].normal.z, sun.direction.z, 1e-6);
@@ -262,7 +270,7 @@ TEST(SunLights, ShaderSunSamplesAndScale) {
     }
     scales.oneSky = true;
     std::vector<Light> c;
-    appendSunLights(c, sun, 3, scales, 1);
+    appendSunLights(c, sun, 3, scales, first);
     EXPECT_EQ(c[0].skyIndex, -1);
 }
 
@@ -443,6 +451,47 @@ TEST(SurfaceLights, LightEnvelopes) {
     controlled.controlled = ControlledParams{};
     controlled.controlled->falloffEnd = 420;
     EXPECT_FLOAT_EQ(lightEnvelope(controlled), 420);
+}
+
+
+// The envelope index answers exactly what testing every light with lightReachesBounds answers, in
+// light order: random point, spot, area and sun lights of random envelopes against random boxes,
+// including boxes touching an envelope's edge and lights more than one index block apart.
+TEST(LightReachIndex, MatchesEveryLightTested) {
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<float> coord(-4000, 4000), size(0, 600), unit(0, 1);
+    std::vector<Light> lights(700);
+    std::vector<float> envelopes(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        Light& l = lights[i];
+        const float kind = unit(rng);
+        l.type = kind < 0.5f ? LightType::Point : kind < 0.8f ? LightType::Area : kind < 0.95f ? LightType::Spot : LightType::Sun;
+        l.origin = {coord(rng), coord(rng), coord(rng)};
+        envelopes[i] = unit(rng) < 0.02f ? std::numeric_limits<float>::infinity() : size(rng) * 3;
+    }
+    const LightReach reach(lights, envelopes);
+    std::vector<uint32_t> got;
+    size_t reached = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        Bounds box;
+        const Vec3 corner{coord(rng), coord(rng), coord(rng)};
+        box.add(corner);
+        box.add(corner + Vec3{size(rng), size(rng), size(rng)});
+        if (trial % 10 == 0) {  // a box whose nearest point is just inside or outside some envelope
+            const Light& l = lights[size_t(trial) % lights.size()];
+            const float e = envelopes[size_t(trial) % lights.size()];
+            box = Bounds{};
+            box.add(l.origin + Vec3{e * (trial % 20 == 0 ? 0.9999f : 1.0001f), 0, 0});
+            box.add(l.origin + Vec3{e + 50, 10, 10});
+        }
+        reach.reaching(box, got);
+        std::vector<uint32_t> expected;
+        for (size_t i = 0; i < lights.size(); ++i)
+            if (lightReachesBounds(lights[i], box, envelopes[i])) expected.push_back(uint32_t(i));
+        ASSERT_EQ(got, expected) << "trial " << trial;
+        reached += got.size();
+    }
+    EXPECT_GT(reached, 3000u);
 }
 
 }  // namespace

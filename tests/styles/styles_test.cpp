@@ -402,7 +402,8 @@ TEST(StylesNoStyles, OptionParsesAndZeroesEntityStyles) {
     entities[1].pairs = {{"classname", "light"}, {"origin", "0 0 64"}, {"_style", "2"}};
     Log log(false);
     LightScales scales;
-    std::vector<Light> styled = createEntityLights(entities, entities, scales, log, "styles.bsp");
+    CLibraryRandom random;
+    std::vector<Light> styled = createEntityLights(entities, entities, scales, log, "styles.bsp", random);
     ASSERT_EQ(styled.size(), 1u);
     EXPECT_EQ(styled[0].style, 2);
     scales.noStyles = lightScalesFromOptions(options).noStyles;
@@ -410,7 +411,7 @@ TEST(StylesNoStyles, OptionParsesAndZeroesEntityStyles) {
     LightOptions noStyles;
     noStyles.noStyles = true;
     scales = lightScalesFromOptions(noStyles);
-    std::vector<Light> plain = createEntityLights(entities, entities, scales, log, "styles.bsp");
+    std::vector<Light> plain = createEntityLights(entities, entities, scales, log, "styles.bsp", random);
     ASSERT_EQ(plain.size(), 1u);
     EXPECT_EQ(plain[0].style, 0);
 }
@@ -430,7 +431,8 @@ TEST(StylesNoStyles, ShaderSunsAndSurfaceLightsLoseTheirStyle) {
         LightScales scales;
         scales.noStyles = noStyles;
         std::vector<Light> lights;
-        appendSunLights(lights, sun, -1, scales, 1);
+        CLibraryRandom random;
+        appendSunLights(lights, sun, -1, scales, random);
         appendAreaLights(lights, square, emitter, scales);
         ASSERT_GE(lights.size(), 2u);
         for (const Light& light : lights) {

@@ -17,20 +17,24 @@ VisGraph threeRooms() {
                          false);
 }
 
-std::vector<uint64_t> clusters(std::initializer_list<int> list) {
-    std::vector<uint64_t> row(1, 0);
-    for (int c : list) setBit(row.data(), static_cast<size_t>(c));
-    return row;
-}
+// The finished rows the knowledge reads: one row of cluster bits per portal.
+struct Results {
+    BitMatrix rows{4, 3};
+    void set(int portal, std::initializer_list<int> clusters) {
+        for (int c : clusters) setBit(rows.row(static_cast<size_t>(portal)), static_cast<size_t>(c));
+    }
+};
 
 TEST(ClusterKnowledge, ASeenClusterIsKnownFromBothEnds) {
     const VisGraph graph = threeRooms();
-    ClusterKnowledge known(graph);
+    Results results;
+    ClusterKnowledge known(graph, results.rows);
     EXPECT_EQ(known.home(0), 0);
     EXPECT_EQ(known.home(2), 1);
     EXPECT_EQ(known.home(3), 2);
     EXPECT_FALSE(testBit(known.seen(2), 0));
-    known.learn(0, clusters({1, 2}).data());  // room 0 sees rooms 1 and 2 through portal 0
+    results.set(0, {1, 2});  // room 0 sees rooms 1 and 2 through portal 0
+    known.learn(0);
     EXPECT_TRUE(testBit(known.seen(0), 2));
     EXPECT_TRUE(testBit(known.seen(2), 0));  // so room 2 sees room 0
     EXPECT_TRUE(testBit(known.seen(1), 0));
@@ -39,15 +43,22 @@ TEST(ClusterKnowledge, ASeenClusterIsKnownFromBothEnds) {
 
 TEST(ClusterKnowledge, ADoneClusterHidesWhatItsRowMisses) {
     const VisGraph graph = threeRooms();
-    ClusterKnowledge known(graph);
+    Results results;
+    ClusterKnowledge known(graph, results.rows);
     // Room 2 has one portal: once it is done seeing room 1 only, room 0 cannot see room 2.
     EXPECT_TRUE(testBit(known.possible(0), 2));
-    known.learn(3, clusters({1}).data());
+    results.set(3, {1});
+    known.learn(3);
     EXPECT_FALSE(testBit(known.possible(0), 2));
     EXPECT_TRUE(testBit(known.possible(1), 2));
     EXPECT_TRUE(testBit(known.possible(2), 2));
-    // Room 1 is not done until both its portals are.
-    known.learn(1, clusters({0}).data());
+    // Room 1 is not done until both its portals are; then its row is both portals' rows.
+    results.set(1, {0});
+    known.learn(1);
+    EXPECT_TRUE(testBit(known.possible(2), 1));
+    results.set(2, {2});
+    known.learn(2);
+    EXPECT_TRUE(testBit(known.possible(0), 1));
     EXPECT_TRUE(testBit(known.possible(2), 1));
 }
 

@@ -145,13 +145,19 @@ TEST_P(VisFull, WithinOnePercentOfReferenceConservativeAndThreadIndependent) {
     EXPECT_LE(ourFraction, theirFraction * 1.01);
     EXPECT_LE(ourFraction, meanVisibleFraction(bsp::readBsp(ref.fastBsp).visibility));
     expectOnlyVisChanged(ref.bsp, two);
-    expectConservative(two);
+    // Q3MAP_VIS_SAMPLE_POINTS samples more (or fewer) points by hand; the suite takes 3000. At
+    // 30000, oacmpdm5 shows 12 pairs q3map2's full vis hides as well (6 even its -fast flood):
+    // their segments cross a slab 0.125 units thick at y 456 where the .prt has solid faces on
+    // both sides and no portal, though no brush of the BSP lies there.
+    const char* points = std::getenv("Q3MAP_VIS_SAMPLE_POINTS");
+    expectConservative(two, points ? std::max(100, std::atoi(points)) : 3000);
 }
 
-// The suite samples two cheap maps; Q3MAP_VIS_FULL_MAPS=oacmpdm9,oacmpdm10 (or "all") adds others
-// by hand. The reference's full vis of the largest ones takes a quarter of an hour, once.
+// The suite samples four cheap maps, one of them open (oacmpdm8 sees three quarters of itself);
+// Q3MAP_VIS_FULL_MAPS=oacmpdm9,oacmpdm10 (or "all") adds others by hand. The reference's full vis
+// of the largest ones takes from minutes to most of an hour, once.
 std::vector<std::string> fullVisMaps() {
-    std::vector<std::string> maps{"oacmpdm1", "oacmpdm5"};
+    std::vector<std::string> maps{"oacmpdm1", "oacmpdm5", "oacmpdm8", "oacmpctf1"};
     const char* env = std::getenv("Q3MAP_VIS_FULL_MAPS");
     std::string extra = env ? env : "";
     if (extra == "all") {

@@ -5,6 +5,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "bsp_tree.h"
 #include "progress.h"
@@ -37,11 +38,13 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out) {
-    out.clear();
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (lights[i].affectsGrid && lightReachesBounds(lights[i], bounds, envelopes[i]) &&
-            !areaLightSurelyDarkIn(lights[i], bounds, settings))
-            out.push_back(static_cast<uint32_t>(i));
+    gridLightsReaching(lights, LightReach(lights, envelopes), bounds, settings, out);
+}
+
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out) {
+    reach.reaching(bounds, out);
+    std::erase_if(out, [&](uint32_t i) { return !lights[i].affectsGrid || areaLightSurelyDarkIn(lights[i], bounds, settings); });
 }
 
 namespace {
@@ -58,6 +61,106 @@ std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, 
     return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }
 
+bool gridNudgesCannotLeaveSolid(const bsp::Bsp& bsp, Vec3 origin, Vec3 cellSize) {
+    if (bsp.nodes.empty()) return false;
+    const Vec3 half = cellSize * 0.5f;
+    // Points within 0.1 of a plane may end on either side (PointInLeafNum), so a box reaching
+    // that band visits both; the extra 0.01 covers the rounding of the box's distances.
+    constexpr double kBand = 0.1 + 0.01;
+    constexpr int kNodeBudget = 512;
+    // Each visit adds at most one entry: the budget bounds the stack.
+    std::array<int32_t, kNodeBudget + 2> pending;
+    size_t top = 0;
+    pending[top++] = 0;
+    int visited = 0;
+    while (top > 0) {
+        const int32_t node = pending[--top];
+        if (node < 0) {
+            const size_t leaf = size_t(-(node + 1));
+            if (leaf >= bsp.leafs.size() || bsp.leafs[leaf].cluster != -1) return false;
+            continue;
+        }
+        if (++visited > kNodeBudget || size_t(node) >= bsp.nodes.size()) return false;
+        const bsp::Node& n = bsp.nodes[size_t(node)];
+        if (n.planeNum < 0 || size_t(n.planeNum) >= bsp.planes.size()) return false;
+        const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
+        double centre = -double(plane.dist), spread = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            centre += double(plane.normal[axis]) * double(origin[axis]);
+            spread += std::fabs(double(plane.normal[axis])) * double(half[axis]);
+        }
+        if (centre - spread <= kBand) pending[top++] = n.children[1];
+        if (centre + spread >= -kBand) pending[top++] = n.children[0];
+    }
+    return true;
+}
+
+std::optional<PlacedGridPoint> nudgeGridPointAsTraceGrid(const BspTree& tree, Vec3 origin, Vec3 cellSize,
+                                                         CLibraryRandom& random) {
+    // Every try's position as q3map2 computes it (in double, rounded to float); drawn from a copy,
+    // since only the tries up to the first free one consume values.
+    thread_local std::vector<Vec3> tries;
+    tries.clear();
+    CLibraryRandom drawn = random;
+    auto moved = [&](float base, double step, float size) {
+        const double unit = double(drawn.unit());
+        return float(double(base) + (unit - 0.5) * step * double(size));
+    };
+    double step = 0.0;
+    for (int k = 0; k < kGridNudgeTries; ++k) {
+        step += 0.005;
+        const float x = moved(origin.x, step, cellSize.x);
+        const float y = moved(origin.y, step, cellSize.y);
+        const float z = moved(origin.z, step, cellSize.z);
+        tries.push_back(Vec3{x, y, z});
+    }
+    // The tries are whole positions: added to the world's origin, they stay exact.
+    const std::optional<Vec3> free = tree.nudgeOutOfSolid(Vec3{}, tries, kNudgedEpsilon);
+    if (!free) {
+        random = drawn;
+        return std::nullopt;
+    }
+    const auto first = std::find(tries.begin(), tries.end(), *free);
+    random.discard(3 * uint64_t(first - tries.begin() + 1));
+    return PlacedGridPoint{*free, tree.clusterForPoint(*free), true};
+}
+
+std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const bsp::Bsp& bsp,
+                                                                 const GridLattice& grid, CLibraryRandom random,
+                                                                 int threads) {
+    const size_t bx = size_t(std::max(0, grid.bounds[0])), by = size_t(std::max(0, grid.bounds[1]));
+    const size_t count = bx * by * size_t(std::max(0, grid.bounds[2]));
+    auto latticePoint = [&](size_t i) {
+        const size_t x = i % bx, y = (i / bx) % by, z = i / (bx * by);
+        return Vec3{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
+                    grid.mins.z + float(z) * grid.size.z};
+    };
+    std::vector<std::optional<PlacedGridPoint>> placements(count);
+    // In parallel, what needs no draw: free lattice points, and points whose every try fails.
+    std::vector<uint8_t> hopeless(count, 0);
+    const GridNudges noNudges{std::vector<Vec3>{}};
+    tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+                placements[i] = placeGridPoint(tree, latticePoint(i), noNudges);
+                hopeless[i] = !placements[i] && gridNudgesCannotLeaveSolid(bsp, latticePoint(i), grid.size);
+            }
+        });
+    });
+    uint64_t skipped = 0;  // values drawn by the hopeless points since the last search
+    for (size_t i = 0; i < count; ++i) {
+        if (placements[i]) continue;
+        if (hopeless[i]) {
+            skipped += 3 * kGridNudgeTries;
+            continue;
+        }
+        random.discard(skipped);
+        skipped = 0;
+        placements[i] = nudgeGridPointAsTraceGrid(*tree, latticePoint(i), grid.size, random);
+    }
+    return placements;
+}
+
 namespace {
 
 // Whether no segment from the box to the point enters structural solid.
@@ -72,19 +175,20 @@ bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
 
 }  // namespace
 
-void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
-                       const ContributionSettings& settings,
-                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
-                       const BspTree* solidTree) {
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree) {
     const std::vector<GridBlock> blocks = gridBlocks(grid.bounds, blockEdge);
     const size_t bx = size_t(grid.bounds[0]), by = size_t(grid.bounds[1]);
     const std::vector<float> envelopes = lightEnvelopes(lights, settings.forceFast);
+    const LightReach reach(lights, envelopes);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         BlockLights reaching;
+        std::vector<GridBlockPoint> points;
         for (size_t b = range.begin(); b != range.end(); ++b) {
             const GridBlock& block = blocks[b];
             const Bounds bounds = gridBlockBounds(block, grid.mins, grid.size, margin);
-            gridLightsReaching(lights, envelopes, bounds, settings, reaching.candidates);
+            gridLightsReaching(lights, reach, bounds, settings, reaching.candidates);
             reaching.clearOfSolid.clear();
             if (solidTree) {
                 // Sun rays run to the sky, not to an origin: they keep their own walk.
@@ -92,16 +196,30 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                     reaching.clearOfSolid.push_back(
                         lights[i].type != LightType::Sun && boxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
             }
+            points.clear();
             block.forEachPoint([&](int x, int y, int z) {
                 const Vec3 origin{grid.mins.x + float(x) * grid.size.x, grid.mins.y + float(y) * grid.size.y,
                                   grid.mins.z + float(z) * grid.size.z};
-                lightPoint(size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin, reaching);
+                points.push_back({size_t(x) + size_t(y) * bx + size_t(z) * bx * by, origin});
             });
+            lightBlock(points, reaching);
             progress.advance(block.pointCount());
         }
     };
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
+}
+
+void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                       const ContributionSettings& settings,
+                       int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
+                       const BspTree* solidTree) {
+    lightGridBlocks(
+        grid, lights, margin, settings, blockEdge, threads, progress,
+        [&](std::span<const GridBlockPoint> points, const BlockLights& reaching) {
+            for (const GridBlockPoint& p : points) lightPoint(p.index, p.origin, reaching);
+        },
+        solidTree);
 }
 
 }  // namespace q3::light

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "bsp_tree.h"
+#include "c_library_random.h"
 #include "light_contribution.h"
+#include "light_reach.h"
 #include "lights.h"
 #include "vec3.h"
 
@@ -47,6 +49,9 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 // lights may add more than their -fast tolerance there (areaLightSurelyDarkIn).
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
+// The same from an index of the lights' envelopes built once for many blocks.
+void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
+                        const ContributionSettings& settings, std::vector<uint32_t>& out);
 
 // The nudges tried for grid points in solid (nearest first), with their box taken once.
 struct GridNudges {
@@ -65,12 +70,33 @@ struct PlacedGridPoint {
 };
 std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, const GridNudges& nudges);
 
+// q3map2's TraceGrid nudges a point in solid by up to 199 random tries (the step grows by 0.005 from
+// 0.005; each try moves the point by (Random() - 0.5) x step x `cellSize` along x, then y, then z)
+// and keeps the first free one. These draw exactly as many values as q3map2 does, so calling them
+// for every point in index order keeps the sequence in step with q3map2's run on one thread.
+constexpr int kGridNudgeTries = 199;  // while the step, summed in double, stays within 1
+// Whether every position the nudges of `origin` can reach (half a cell each way) lies in leafs
+// outside every cluster, so that all of them fail whatever is drawn. False when unsure (a bounded
+// walk of `bsp`'s nodes).
+bool gridNudgesCannotLeaveSolid(const bsp::Bsp& bsp, Vec3 origin, Vec3 cellSize);
+// The first free try for a point in solid, drawing from `random` the values its tries take.
+std::optional<PlacedGridPoint> nudgeGridPointAsTraceGrid(const BspTree& tree, Vec3 origin, Vec3 cellSize,
+                                                         CLibraryRandom& random);
+
 // A grid to light: `bounds` points per axis at `mins` + index * `size`.
 struct GridLattice {
     std::array<int, 3> bounds{};
     Vec3 mins;
     Vec3 size;
 };
+
+// Every point of `grid` (index x + y bx + z bx by) placed as q3map2's TraceGrid places them on one
+// thread, in index order, drawing from `random` (placeGridPoint, then nudgeGridPointAsTraceGrid);
+// the tests that draw nothing run on `threads` threads. nullopt: left in solid. `tree` null or
+// without nodes: every point stays on the lattice.
+std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const bsp::Bsp& bsp,
+                                                                 const GridLattice& grid, CLibraryRandom random,
+                                                                 int threads);
 
 // The lights that may reach a block's points (indices in light order), and with a tree, for each
 // of them whether no segment from anywhere in the block (nudges included) to the light's origin
@@ -90,5 +116,16 @@ void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, f
                        const ContributionSettings& settings,
                        int blockEdge, int threads, Progress& progress, const GridPointFn& lightPoint,
                        const BspTree* solidTree = nullptr);
+
+// The same walk, one call per block with all its points (for callers that trace a block's rays
+// together).
+struct GridBlockPoint {
+    size_t index;
+    Vec3 origin;
+};
+using GridBlockFn = std::function<void(std::span<const GridBlockPoint> points, const BlockLights& lights)>;
+void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
+                     const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
+                     const GridBlockFn& lightBlock, const BspTree* solidTree = nullptr);
 
 }  // namespace q3::light

@@ -90,8 +90,10 @@ std::vector<SurfaceLight> lightPass(const LightContext& ctx, std::span<const int
                                     const SurfacePass& pass, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
     const std::vector<float> envelopes = lightEnvelopes(pass.lights, env.settings.forceFast);
+    const LightReach reach(pass.lights, envelopes);
     SurfacePass withEnvelopes = pass;
     withEnvelopes.envelopes = envelopes;
+    withEnvelopes.reach = &reach;
     std::vector<SurfaceLight> results(surfaces.size());
     Progress progress = Progress::forConsole(log, surfaces.size());
     auto body = [&](const tbb::blocked_range<size_t>& range) {

@@ -11,6 +11,7 @@
 
 #include "dirt.h"
 #include "light_context.h"
+#include "light_reach.h"
 #include "light_text.h"
 #include "surface_lighting.h"
 
@@ -110,6 +111,8 @@ void lightVertexes(LightContext& ctx, Log& log) {
     std::vector<std::vector<float>> envelopes{lightEnvelopes(ctx.lights, env.settings.forceFast)};
     for (const std::vector<Light>& bounced : ctx.bounceLights)
         envelopes.push_back(lightEnvelopes(bounced, env.settings.forceFast));
+    std::vector<LightReach> reaches{LightReach(ctx.lights, envelopes[0])};
+    for (size_t b = 0; b < ctx.bounceLights.size(); ++b) reaches.emplace_back(ctx.bounceLights[b], envelopes[b + 1]);
     auto body = [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const bsp::Surface& s = bsp.surfaces[i];
@@ -130,11 +133,12 @@ void lightVertexes(LightContext& ctx, Log& log) {
             // passes up: each pass searches for its own lit position (a vertex the direct light
             // reaches only from a nudged point still takes the bounce where it stands).
             std::vector<Vec3> lit(size_t(std::max(0, s.numVerts)));
-            auto addPass = [&](std::span<const Light> passLights, std::span<const float> passEnvelopes, Vec3 ambient) {
+            auto addPass = [&](std::span<const Light> passLights, const LightReach& passReach, Vec3 ambient) {
                 // Lights whose envelope misses every position the search may try are skipped.
+                std::vector<uint32_t> indices;
+                passReach.reaching(reach, indices);
                 std::vector<const Light*> reaching;
-                for (size_t k = 0; k < passLights.size(); ++k)
-                    if (lightReachesBounds(passLights[k], reach, passEnvelopes[k])) reaching.push_back(&passLights[k]);
+                for (const uint32_t k : indices) reaching.push_back(&passLights[k]);
                 const VertexTracer tracer{ctx,     surfaceEnv,      clusters,           reaching,
                                           ambient, shader.twoSided, shader.forceSunlight, dirty ? passes : nullptr};
                 // Traced vertexes first; those whose every position was in solid take the mean of
@@ -157,8 +161,8 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ambient;
                 for (size_t v = 0; v < lit.size(); ++v) lit[v] += traced[v].value_or(fallback);
             };
-            addPass(ctx.lights, envelopes[0], ctx.world.ambient);
-            for (size_t b = 0; b < ctx.bounceLights.size(); ++b) addPass(ctx.bounceLights[b], envelopes[b + 1], Vec3{});
+            addPass(ctx.lights, reaches[0], ctx.world.ambient);
+            for (size_t b = 0; b < ctx.bounceLights.size(); ++b) addPass(ctx.bounceLights[b], reaches[b + 1], Vec3{});
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];
@@ -173,7 +177,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
         }
     };
     tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, bsp.surfaces.size(), 16), body); });
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, bsp.surfaces.size(), 1), body); });
     for (uint64_t c : counts) ctx.stats.vertexes += c;
     log.info(strCat(ctx.stats.vertexes, " vertexes lit"));
 }

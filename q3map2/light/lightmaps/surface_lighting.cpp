@@ -555,11 +555,22 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const LuxelTiles tiles(points, w, h, kTileEdge);
     std::vector<uint32_t> active;  // tiles the light reaches
     LuxelSampler::Scratch scratch;
-    for (size_t lightIndex = 0; lightIndex < pass.lights.size(); ++lightIndex) {
+    std::vector<uint32_t> candidates;  // the lights whose envelope reaches the sample points, in order
+    if (!bounds.empty()) {
+        if (pass.reach) {
+            pass.reach->reaching(bounds, candidates);
+        } else {
+            for (size_t i = 0; i < pass.lights.size(); ++i) {
+                const float envelope =
+                    i < pass.envelopes.size() ? pass.envelopes[i] : lightEnvelope(pass.lights[i], env.settings.forceFast);
+                if (lightReachesBounds(pass.lights[i], bounds, envelope)) candidates.push_back(uint32_t(i));
+            }
+        }
+    }
+    for (const uint32_t lightIndex : candidates) {
         const Light& lt = pass.lights[lightIndex];
         const float envelope = lightIndex < pass.envelopes.size() ? pass.envelopes[lightIndex]
                                                                   : lightEnvelope(lt, env.settings.forceFast);
-        if (bounds.empty() || !lightReachesBounds(lt, bounds, envelope)) continue;
         if (!inFrontOfPlane(lt, reach) || !visibleFromLightmap(lt, reach, env.tree)) continue;
         if (!seenFromGroup(lt, groupClusters, env.tree)) continue;
         tiles.reachedBy(lt, envelope, env.settings, active);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bspfile.h"
+#include "light_reach.h"
 #include "lightmap_layout.h"
 #include "lights.h"
 #include "vec3.h"
@@ -36,6 +37,8 @@ struct SurfacePass {
     // lightEnvelope of each light, asked once per pass instead of once per surface and light;
     // empty: computed where needed.
     std::span<const float> envelopes = {};
+    // Which of `lights` reach a box (built from `envelopes`); null: every light is tested.
+    const LightReach* reach = nullptr;
 };
 
 struct SurfaceLight {

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "entity_keys.h"
-#include "light_random.h"
 #include "lights.h"
 #include "light_text.h"
 #include "log.h"
@@ -144,7 +143,7 @@ WorldLighting readWorldLighting(const bsp::Entity& ws) {
 
 std::vector<Light> createEntityLights(const std::vector<bsp::Entity>& entities,
                                       const std::vector<bsp::Entity>& targets, const LightScales& scales,
-                                      Log& log, const std::string& fileName) {
+                                      Log& log, const std::string& fileName, CLibraryRandom& random) {
     std::vector<Light> out;
     for (size_t i = 0; i < entities.size(); ++i) {
         const bsp::Entity& e = entities[i];
@@ -244,8 +243,7 @@ std::vector<Light> createEntityLights(const std::vector<bsp::Entity>& entities,
                     sun.samples = numSamples;
                     sun.style = style;
                     sun.filterRadius = light.filterRadius;
-                    appendSunLights(out, sun, -1, scales,
-                                    static_cast<uint32_t>(entityNum) * 2654435761u + 17u);
+                    appendSunLights(out, sun, -1, scales, random);
                     for (size_t k = out.size() - static_cast<size_t>(numSamples); k < out.size(); ++k)
                         out[k].entityNum = entityNum;
                     continue;
@@ -256,14 +254,13 @@ std::vector<Light> createEntityLights(const std::vector<bsp::Entity>& entities,
         if (isPoint) light.photons *= scales.pointScale;
         light.fast = scales.fast || scales.fastPoint;
 
-        // Jittered copies: a fixed-seed generator per entity keeps the list reproducible.
-        SplitMix rng(static_cast<uint64_t>(entityNum) * 0x9E3779B97F4A7C15ull + 1);
+        // Jittered copies, three draws each (x, y, z), even with no deviance.
         out.push_back(light);
         for (int j = 1; j < numSamples; ++j) {
             Light copy = light;
-            copy.origin.x += (rng.unit() * 2 - 1) * deviance;
-            copy.origin.y += (rng.unit() * 2 - 1) * deviance;
-            copy.origin.z += (rng.unit() * 2 - 1) * deviance;
+            copy.origin.x += (random.unit() * 2 - 1) * deviance;
+            copy.origin.y += (random.unit() * 2 - 1) * deviance;
+            copy.origin.z += (random.unit() * 2 - 1) * deviance;
             out.push_back(copy);
         }
     }

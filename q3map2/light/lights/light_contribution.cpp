@@ -299,7 +299,9 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
     const Vec3 toLight = light.origin - origin;
     float dist = length(toLight);
     if (dist > envelope) return std::nullopt;
-    const Vec3 dir = dist > 0 ? toLight / dist : Vec3{0, 0, 1};
+    // A light on the point has no direction (q3map2 normalises the zero vector to zero): all of its
+    // light goes to the ambient part, none to the point's main direction.
+    const Vec3 dir = dist > 0 ? toLight / dist : Vec3{};
     float add = 0;
     if (light.type == LightType::Area) {
         if (env.settings.faster) {

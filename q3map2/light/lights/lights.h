@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bspfile.h"
+#include "c_library_random.h"
 #include "vec3.h"
 
 namespace q3 {
@@ -205,15 +206,16 @@ WorldLighting readWorldLighting(const bsp::Entity& worldspawn);
 
 // Light entities (classname prefixed "light", and "lightJunior") of `entities`, in entity order.
 // Spotlight targets are looked up among `targets` (normally the same list). Warnings and clamps
-// of the controlled model go to `log`. Throws CompileError for an invalid light style.
+// of the controlled model go to `log`. Throws CompileError for an invalid light style. The jitter
+// of lights with "_samples" draws from `random`, as q3map2's does from rand().
 std::vector<Light> createEntityLights(const std::vector<bsp::Entity>& entities,
                                       const std::vector<bsp::Entity>& targets, const LightScales& scales,
-                                      Log& log, const std::string& fileName);
+                                      Log& log, const std::string& fileName, CLibraryRandom& random);
 
-// Adds the `samples` sun lights of a sun (sample 0 exact, the others jittered within the deviance).
-// `seed` makes the jitter deterministic.
+// Adds the `samples` sun lights of a sun (sample 0 exact, the others jittered within the deviance,
+// each drawing pairs from `random` until the pair falls inside it, as q3map2's CreateSunLight).
 void appendSunLights(std::vector<Light>& out, const SunDirective& sun, int skyIndex, const LightScales& scales,
-                     uint32_t seed);
+                     CLibraryRandom& random);
 
 // Adds the ring of suns that approximates q3map_skyLight. With sky.sampleColor and all six
 // `skyBox` images, each sun takes the cosine-weighted colour of the box around its direction
@@ -239,10 +241,10 @@ std::vector<int> assignSkyIndices(const bsp::Bsp& bsp, const std::vector<Lightin
                                   bool oneSky, Log& log);
 
 // Shader suns, sky domes and surface lights of every BSP surface. `geometryOf(i)` returns the
-// geometry of surface i (patches tessellated by the caller).
+// geometry of surface i (patches tessellated by the caller). Sun jitter draws from `random`.
 std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<LightingShader>& shaders,
                                       const std::vector<int>& skyIndices, bool noShaderSun,
-                                      const LightScales& scales,
+                                      const LightScales& scales, CLibraryRandom& random,
                                       const std::function<EmitterGeometry(int surfaceNum)>& geometryOf);
 
 // Fast-envelope radius of a light: beyond it the light adds at most falloffTolerance.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "light_random.h"
 #include "lights.h"
 #include "light_text.h"
 #include "log.h"
@@ -80,25 +79,25 @@ Vec3 sampleProbes(const std::vector<SkyProbe>& probes, Vec3 direction, Vec3 limi
 }  // namespace
 
 void appendSunLights(std::vector<Light>& out, const SunDirective& sun, int skyIndex, const LightScales& scales,
-                     uint32_t seed) {
+                     CLibraryRandom& random) {
     const int samples = std::max(1, sun.samples);
     const float photons = sun.intensity / static_cast<float>(samples);
-    const double deviance = degToRad(sun.devianceDeg);
+    const float deviance = sun.devianceDeg / 180.0f * static_cast<float>(kPiD);
     const Vec3 base = normalize(sun.direction);
     const double baseAzimuth = std::atan2(base.y, base.x);
     const double baseElevation = std::atan2(base.z, std::sqrt(base.x * base.x + base.y * base.y));
-    SplitMix rng(seed);
 
     for (int i = 0; i < samples; ++i) {
         Vec3 direction = base;
-        if (i > 0 && deviance > 0) {
-            // Rejection sampling inside a disc of radius `deviance` in (azimuth, elevation) space.
-            double da, de;
+        if (i > 0) {
+            // Rejection sampling inside a disc of radius `deviance` in (azimuth, elevation) space,
+            // in floats as q3map2; a pair is drawn even when there is no deviance.
+            float da, de;
             do {
-                da = (rng.unit() * 2.0 - 1.0) * deviance;
-                de = (rng.unit() * 2.0 - 1.0) * deviance;
+                da = (random.unit() * 2.0f - 1.0f) * deviance;
+                de = (random.unit() * 2.0f - 1.0f) * deviance;
             } while (da * da + de * de > deviance * deviance);
-            direction = directionForSpherical(baseAzimuth + da, baseElevation + de);
+            if (deviance > 0) direction = directionForSpherical(baseAzimuth + da, baseElevation + de);
         }
         Light light;
         light.type = LightType::Sun;
@@ -135,6 +134,7 @@ void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3
     SunDirective sun;
     sun.color = color;
     sun.samples = 1;
+    CLibraryRandom unused;  // suns of one sample draw nothing
     sun.style = style;
     sun.filterRadius = filterRadius;
     sun.intensity = sky.value / static_cast<float>(numSuns) *
@@ -145,7 +145,7 @@ void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3
     for (int i = 0; i < elevationSteps; ++i) {
         for (int j = 0; j < angleSteps; ++j) {
             sun.direction = directionForSpherical(angle, elevation);
-            appendSunLights(out, sun, skyIndex, scales, 0);
+            appendSunLights(out, sun, skyIndex, scales, unused);
             angle += angleStep;
         }
         elevation += elevationStep;
@@ -153,11 +153,11 @@ void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3
     }
     if (doBottom) {
         sun.direction = {0, 0, -1};
-        appendSunLights(out, sun, skyIndex, scales, 0);
+        appendSunLights(out, sun, skyIndex, scales, unused);
     }
     if (doTop) {
         sun.direction = {0, 0, 1};
-        appendSunLights(out, sun, skyIndex, scales, 0);
+        appendSunLights(out, sun, skyIndex, scales, unused);
     }
     if (!probes.empty()) {
         float brightest = 0;

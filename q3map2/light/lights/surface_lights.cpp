@@ -164,7 +164,7 @@ void appendAreaLights(std::vector<Light>& out, const EmitterGeometry& g, const L
 
 std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<LightingShader>& shaders,
                                       const std::vector<int>& skyIndices, bool noShaderSun,
-                                      const LightScales& scales,
+                                      const LightScales& scales, CLibraryRandom& random,
                                       const std::function<EmitterGeometry(int surfaceNum)>& geometryOf) {
     std::vector<Light> out;
     std::vector<bool> skyDone(shaders.size(), false);
@@ -180,8 +180,7 @@ std::vector<Light> createShaderLights(const bsp::Bsp& bsp, const std::vector<Lig
             const int skyIndex = shaderNum < skyIndices.size() ? skyIndices[shaderNum] : -1;
             if (!noShaderSun)
                 for (size_t k = 0; k < si.suns.size(); ++k)
-                    appendSunLights(out, si.suns[k], skyIndex, scales,
-                                    static_cast<uint32_t>(shaderNum * 977u + k * 131u + 7u));
+                    appendSunLights(out, si.suns[k], skyIndex, scales, random);
             for (const SkyLightDirective& sky : si.skyLights)
                 appendSkyLights(out, sky, si.color, skyIndex, si.lightStyle, si.lightFilterRadius, scales, &si.skyBox);
         }

@@ -7,6 +7,17 @@
 
 namespace q3::light {
 
+// CompactNode::axis for a plane normal: 0..2 when it is exactly +1 on that axis and 0 elsewhere,
+// 3..5 for -1, 6 for any other.
+static int32_t axialPlaneCode(const float normal[3]) {
+    for (int k = 0; k < 3; ++k) {
+        const bool rest = normal[(k + 1) % 3] == 0.0f && normal[(k + 2) % 3] == 0.0f;
+        if (rest && normal[k] == 1.0f) return k;
+        if (rest && normal[k] == -1.0f) return k + 3;
+    }
+    return 6;
+}
+
 bool shaderIsTranslucent(const bsp::Shader& shader) {
     using namespace contents;
     // The content flags the C_TRANSLUCENT surfaceparms of q3map2's quake3 game table set.
@@ -62,10 +73,15 @@ void BspTree::buildLeafSolids() {
             if (!brushIsOpaque(b)) continue;
             const bsp::Brush& brush = bsp_.brushes[b];
             LeafSolid solid{b, uint32_t(solidPlanes_.size()), 0};
-            for (int k = 0; k < brush.numSides; ++k) {
-                const bsp::Plane& plane = bsp_.planes[bsp_.brushSides[brush.firstSide + k].planeNum];
-                solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist});
-            }
+            // Axial sides first: they are the brush's box, which most points lie outside of, and
+            // each takes one subtraction (the order of the tests does not change their answer).
+            for (const bool axial : {true, false})
+                for (int k = 0; k < brush.numSides; ++k) {
+                    const bsp::Plane& plane = bsp_.planes[bsp_.brushSides[brush.firstSide + k].planeNum];
+                    const int32_t axis = axialPlaneCode(plane.normal);
+                    if ((axis < 6) == axial)
+                        solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist, axis});
+                }
             solid.numPlanes = uint32_t(solidPlanes_.size()) - solid.firstPlane;
             leafSolids_.push_back(solid);
         }
@@ -159,13 +175,8 @@ void BspTree::buildCompactTree() {
             newIndex[size_t(index)] = int32_t(out.size());
             const bsp::Node& n = nodes[size_t(index)];
             const bsp::Plane& plane = bsp_.planes[size_t(n.planeNum)];
-            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, 6,
+            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, axialPlaneCode(plane.normal),
                           {n.children[0], n.children[1]}};
-            for (int k = 0; k < 3 && c.axis == 6; ++k) {
-                const bool rest = plane.normal[(k + 1) % 3] == 0.0f && plane.normal[(k + 2) % 3] == 0.0f;
-                if (rest && plane.normal[k] == 1.0f) c.axis = k;
-                if (rest && plane.normal[k] == -1.0f) c.axis = k + 3;
-            }
             out.push_back(c);
             for (int side = 1; side >= 0; --side)
                 if (keep(n.children[side])) stack.push_back(n.children[side]);
@@ -449,15 +460,20 @@ int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     if (leafNum < 0 || leafNum >= int(bsp_.leafs.size())) return -1;
     const int cluster = bsp_.leafs[size_t(leafNum)].cluster;
     if (cluster < 0) return -1;
-    // planeDistance's arithmetic: float inputs, double products and sums.
-    const double x = point.x, y = point.y, z = point.z, limit = epsilon;
+    // planeDistance's arithmetic: float inputs, double products and sums. For an axial plane of a
+    // finite point that is p[axis] - dist bit for bit (the other products are zeros).
+    const WalkPoint p(point);
+    const bool finite = std::isfinite(point.x) && std::isfinite(point.y) && std::isfinite(point.z);
+    const double limit = epsilon;
     for (uint32_t i = leafSolidStart_[size_t(leafNum)]; i < leafSolidStart_[size_t(leafNum) + 1]; ++i) {
         const LeafSolid& solid = leafSolids_[i];
         bool inside = true;
         for (uint32_t k = solid.firstPlane; k < solid.firstPlane + solid.numPlanes && inside; ++k) {
-            const SidePlane& p = solidPlanes_[k];
-            if (double(p.normal[0]) * x + double(p.normal[1]) * y + double(p.normal[2]) * z - double(p.dist) > limit)
-                inside = false;
+            const SidePlane& s = solidPlanes_[k];
+            const double d = finite && s.axis < 6 ? p.v[s.axis] - double(s.dist)
+                                                  : double(s.normal[0]) * p.v[0] + double(s.normal[1]) * p.v[1] +
+                                                        double(s.normal[2]) * p.v[2] - double(s.dist);
+            if (d > limit) inside = false;
         }
         if (inside) return -1 - solid.brush;
     }

@@ -141,6 +141,7 @@ private:
     struct SidePlane {
         float normal[3];
         float dist;
+        int32_t axis;  // as CompactNode::axis: 0..5 for a plane along an axis, 6 otherwise
     };
     struct LeafSolid {
         int32_t brush;

@@ -9,6 +9,7 @@
 #include "lightmap_layout.h"
 #include "light_text.h"
 #include "surface_lighting.h"
+#include "trace_pieces.h"
 #include "patch.h"
 
 namespace q3::light {
@@ -186,7 +187,9 @@ void buildScene(LightContext& ctx) {
     const BspTree* tree = ctx.tree.get();
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
     options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullClearOfSolid(points); };
-    ctx.scene = std::make_unique<TraceScene>(ctx.surfaces, options);
+    // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
+    // beside it is stopped (trace_pieces.h).
+    ctx.scene = std::make_unique<TraceScene>(traceCasterPieces(ctx.surfaces, ctx.bsp, options), options);
 }
 
 void createLights(LightContext& ctx, Log& log) {
@@ -195,11 +198,13 @@ void createLights(LightContext& ctx, Log& log) {
     all.insert(all.end(), ctx.mapLights.begin(), ctx.mapLights.end());
     std::vector<bsp::Entity> targets = all;
     targets.insert(targets.end(), ctx.mapTargets.begin(), ctx.mapTargets.end());
-    ctx.lights = createEntityLights(all, targets, ctx.scales, log, name);
+    // Light creation draws from the C library sequence first, as q3map2's does before its grid.
+    ctx.random = CLibraryRandom();
+    ctx.lights = createEntityLights(all, targets, ctx.scales, log, name, ctx.random);
 
     const bool noShaderSun = ctx.world.noShaderSun;
     std::vector<Light> shaderLights = createShaderLights(
-        ctx.bsp, ctx.shaders.shaders, ctx.skyIndices, noShaderSun, ctx.scales, [&ctx](int surfaceNum) {
+        ctx.bsp, ctx.shaders.shaders, ctx.skyIndices, noShaderSun, ctx.scales, ctx.random, [&ctx](int surfaceNum) {
             const SceneSurface& s = ctx.surfaces[static_cast<size_t>(surfaceNum)];
             EmitterGeometry g;
             g.xyz = s.xyz;

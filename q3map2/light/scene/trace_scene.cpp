@@ -301,6 +301,10 @@ void TraceScene::countRays(size_t n) const {
 // The single-ray form of traceBatch, without any allocation.
 Vec3 TraceScene::traceOne(const ShadowRay& r) const {
     countRays(1);
+    return traceSingle(r);
+}
+
+Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
     RTCIntersectContext plain;
     rtcInitIntersectContext(&plain);
     float tfar = r.tfar;
@@ -354,7 +358,8 @@ struct ChunkSegments {
 
 }  // namespace
 
-void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const {
+void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent,
+                            bool axialRaysAlone) const {
     const size_t n = std::min(rays.size(), out.size());
     if (n == 0) return;
     if (n == 1) {
@@ -365,11 +370,23 @@ void TraceScene::traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out
     // Chunks small enough for the ray arrays to stay in cache and on the stack.
     for (size_t first = 0; first < n; first += kBatchChunk) {
         const size_t count = std::min(kBatchChunk, n - first);
-        traceChunk(rays.subspan(first, count), out.subspan(first, count), coherent);
+        traceChunk(rays.subspan(first, count), out.subspan(first, count), coherent, axialRaysAlone);
     }
 }
 
-void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const {
+namespace {
+
+// A direction with a component too small to leave the axial plane through its origin within the
+// world (sun vectors built from angles carry 1e-17 where they mean 0).
+bool runsAlongAxialPlane(Vec3 d) {
+    constexpr float kTiny = 1e-12f;
+    return std::fabs(d.x) < kTiny || std::fabs(d.y) < kTiny || std::fabs(d.z) < kTiny;
+}
+
+}  // namespace
+
+void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent,
+                            bool axialRaysAlone) const {
     const size_t n = rays.size();
     // Rays of one batch usually share a direction (one sun, many luxels) or an origin: Embree
     // groups them into packets when told they are coherent.
@@ -387,6 +404,10 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     size_t numToSky = 0, numOcclusion = 0;
     for (size_t i = 0; i < n; ++i) {
         const ShadowRay& r = rays[i];
+        if (axialRaysAlone && runsAlongAxialPlane(r.direction)) {
+            out[i] = traceSingle(r);
+            continue;
+        }
         if (!r.toSky) {
             setRay(occlusionBuffer[numOcclusion++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
                    r.mask);

@@ -108,10 +108,13 @@ public:
     static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0);
     // The ray skyTransmission() traces.
     static ShadowRay skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0);
-    // Transmission of many rays at once (out[i] for rays[i]), exactly as one call per ray would give,
-    // traced as Embree ray streams: cheaper per ray when the rays are coherent (one sun over many
-    // luxels). `coherent` false: rays that spread from one point to many lights.
-    void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent = true) const;
+    // Transmission of many rays at once (out[i] for rays[i]), traced as Embree ray streams: cheaper
+    // per ray when the rays are coherent (one sun over many luxels). `coherent` false: rays that
+    // spread from one point to many lights. The answers are one call per ray's, but for rays running
+    // along an axial plane: inside a wall's plane Embree's packet and single-ray kernels may disagree,
+    // and `axialRaysAlone` traces those one by one to keep the single-ray answer.
+    void traceBatch(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent = true,
+                    bool axialRaysAlone = false) const;
 
     // Casters of the same group magnitude share one bit of the Embree geometry mask (bit 0 for
     // group 1); beyond 31 other groups, the last bit is shared.
@@ -133,8 +136,9 @@ public:
 private:
 
     static constexpr size_t kBatchChunk = 64;
-    Vec3 traceOne(const ShadowRay& ray) const;
-    void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent) const;
+    Vec3 traceOne(const ShadowRay& ray) const;     // counted
+    Vec3 traceSingle(const ShadowRay& ray) const;  // traceOne's work, not counted
+    void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent, bool axialRaysAlone) const;
     void countRays(size_t n) const;
 
     struct EmbreeState;

@@ -1,0 +1,68 @@
+"""What the screenshot benches share: spawn points of a BSP, ioquake3 shots through
+../shared/tools/q3-screenshot, and ImageMagick's PSNR of two pictures."""
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED_TOOLS = os.path.join(os.path.dirname(ROOT), "shared", "tools")
+SPAWNS = ("info_player_deathmatch", "info_player_start", "team_CTF_redspawn", "team_CTF_bluespawn")
+
+
+def entities(bsp_path, prog):
+    """The entity lump's entities as dicts (lump 0 of an IBSP)."""
+    with open(bsp_path, "rb") as f:
+        data = f.read()
+    if data[:4] != b"IBSP":
+        sys.exit("%s: %s is not an IBSP file" % (prog, bsp_path))
+    offset = int.from_bytes(data[8:12], "little")
+    length = int.from_bytes(data[12:16], "little")
+    text = data[offset:offset + length].decode("latin-1")
+    return [dict(re.findall(r'"([^"]*)"\s+"([^"]*)"', block)) for block in re.findall(r"\{([^{}]*)\}", text)]
+
+
+def plain(value):
+    """A number as q3-screenshot reads it: no exponent ("-7e-06" would be refused), no needless zeros."""
+    text = ("%.4f" % value).rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def viewpoints(bsp_path, count, prog):
+    """The first `count` spawn points (all of them for None), in q3-screenshot's -P form
+    ("X Y Z YAW"), 9 units up as the game spawns a player."""
+    views = []
+    for e in entities(bsp_path, prog):
+        if e.get("classname") not in SPAWNS or "origin" not in e:
+            continue
+        x, y, z = (float(v) for v in e["origin"].split()[:3])
+        views.append(" ".join(plain(v) for v in (x, y, z + 9, float(e.get("angle", "0")))))
+        if len(views) == count:
+            break
+    return views
+
+
+def shoot(bsp, view, prefix, size, game_base, modes, prog, console=()):
+    """Renders the modes from one viewpoint (PREFIX-ioq3-MODE.png); returns the r_debuglight reading
+    ("amb / dir"). `console`: more ioquake3 console lines."""
+    extra = [arg for line in console for arg in ("-x", "ioq3:" + line)]
+    out = subprocess.run([os.path.join(SHARED_TOOLS, "q3-screenshot"), "-e", "ioq3", "-m", ",".join(modes),
+                          "-S", size, "-b", game_base, "-P", view, "-o", prefix,
+                          # The sky's clouds move with time: drawn flat, it compares what -light wrote.
+                          "-x", "ioq3:set r_fastsky 1"] + extra + [bsp],
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit("%s: q3-screenshot failed on %s (exit %d): %s" % (prog, bsp, out.returncode,
+                                                                  (out.stdout + out.stderr).strip()[-400:]))
+    light = re.search(r"amb:\s*(\d+)\s+dir:\s*(\d+)", out.stdout + out.stderr)
+    return "%s / %s" % light.groups() if light else "-"
+
+
+def psnr(a, b):
+    """ImageMagick's PSNR of two pictures in dB (inf when identical), None when it gives none."""
+    out = subprocess.run(["compare", "-metric", "PSNR", a, b, "null:"], capture_output=True, text=True)
+    text = out.stderr.strip().split()[0] if out.stderr.strip() else ""
+    try:
+        return float(text)
+    except ValueError:
+        return float("inf") if text == "inf" else None

@@ -1,0 +1,74 @@
+// misc_model autoclip against q3map2 2.5.17n on the model_clip sample, by what collision sees:
+// q3map2 2.5.17n merges coplanar model triangles into polygons before making brushes, this build
+// makes one brush per triangle, so the brush lumps differ; the contents at points around the
+// clipped models must agree. The refused clip mode (the cone) is left out of the comparison.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include "bsp_compare.h"
+#include "bsp_reference.h"
+#include "bsp_samples.h"
+#include "bspfile.h"
+#include "reference_fixture.h"
+#include "test_data.h"
+
+namespace q3::bspstage {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace q3::bspstage::test;
+
+class ModelClipReference : public conformance::ReferenceTest<int> {};
+
+TEST_P(ModelClipReference, ContentsAroundClippedModelsEqualQ3map2s) {
+    const fs::path work = q3::test::tempDir() / ("model-clip-" + std::to_string(::getpid()));
+    const bsp::Bsp ours = bsp::readBsp(compileSample("model_clip", work / "ours") / "model_clip.bsp");
+    const bsp::Bsp theirs = bsp::readBsp(referenceSampleCompile(reference(), "model_clip", work / "ref") / "model_clip.bsp");
+    // Boxes around the crate, the pillar and the ramp (the cone at 384 384 is left out).
+    const Bounds boxes[3] = {{{96, 96, 0}, {160, 160, 40}}, {{368, 112, 0}, {400, 144, 136}}, {{56, 376, 0}, {136, 440, 40}}};
+    unsigned state = 12345;
+    auto unit = [&] {
+        state = state * 1103515245u + 12345u;
+        return float((state >> 8) & 0xffff) / 65535.0f;
+    };
+    int points = 0, equal = 0, solid = 0;
+    for (const Bounds& box : boxes)
+        for (int i = 0; i < 4000; ++i) {
+            const Vec3 p = box.mins + (box.maxs - box.mins) * Vec3{unit(), unit(), unit()};
+            const int a = pointContents(ours, p), b = pointContents(theirs, p);
+            ++points;
+            equal += a == b ? 1 : 0;
+            solid += b != 0 ? 1 : 0;
+        }
+    // And one unit behind the middle of every clipped triangle: inside its clip brush in both.
+    int behind = 0, behindSolid = 0;
+    for (const bsp::Surface& s : ours.surfaces) {
+        if (s.surfaceType != bsp::MST_TRIANGLE_SOUP || std::string(ours.shaders[size_t(s.shaderNum)].name) == "models/samples/")
+            continue;
+        for (int i = 0; i + 2 < s.numIndexes; i += 3) {
+            Vec3 c[3];
+            for (int k = 0; k < 3; ++k)
+                c[k] = Vec3::fromArray(ours.drawVerts[size_t(s.firstVert + ours.drawIndexes[size_t(s.firstIndex + i + k)])].xyz);
+            const Vec3 inward = normalize(cross(c[2] - c[0], c[1] - c[0])) * -1.0f;
+            const Vec3 p = (c[0] + c[1] + c[2]) / 3.0f + inward;
+            const int a = pointContents(ours, p), b = pointContents(theirs, p);
+            ++behind;
+            equal += a == b ? 1 : 0;
+            ++points;
+            behindSolid += (a != 0 && b != 0) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(solid, points / 50) << "the reference's clip brushes should fill part of the boxes";
+    EXPECT_GE(behind, 30);
+    EXPECT_GE(behindSolid, behind * 9 / 10) << "points behind clipped triangles are solid in both";
+    EXPECT_GE(double(equal) / points, 0.99) << equal << " of " << points << " points agree";
+    std::printf("model clip contents: %d of %d points agree (%d solid in q3map2's; %d of %d behind triangles solid in both)\n",
+                equal, points, solid, behindSolid, behind);
+    fs::remove_all(work);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, ModelClipReference, ::testing::Values(0));
+
+}  // namespace
+}  // namespace q3::bspstage
