@@ -6,6 +6,7 @@
 // duplicate definitions the first one loaded wins (q3map2 searches its shader list from the start).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -222,6 +223,10 @@ struct ShaderInfo {
     std::string flareShader;            // q3map_flare / q3map_flareShader: flares of this surface (-flares)
     std::string backShader;             // q3map_backShader: a flipped copy with this shader
     std::string cloneShader;            // q3map_cloneShader: a copy with this shader
+    std::string remapShader;            // q3map_remapShader: the BSP names this shader so instead
+    // q3map_tcMod translate/scale/rotate, composed in script order: s' = m[0] . (s, t, 1),
+    // t' = m[1] . (s, t, 1); the identity when the shader has none.
+    std::array<std::array<float, 3>, 3> tcMod{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
 
     bool isSky() const { return (compileFlags & compileflags::Sky) != 0; }
     bool isTranslucent() const { return (compileFlags & compileflags::Translucent) != 0; }

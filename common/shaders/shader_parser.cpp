@@ -15,10 +15,10 @@ namespace {
 // q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 17> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel", "q3map_foliage",     "q3map_remapShader",
+constexpr std::array<std::string_view, 15> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel", "q3map_foliage",
     "q3map_fur",          "q3map_colorGen",    "q3map_colorMod",     "q3map_rgbGen",        "q3map_rgbMod",
-    "q3map_alphaGen",     "q3map_alphaMod",    "q3map_tcMod",        "q3map_indexed",       "q3map_patchShadows",
+    "q3map_alphaGen",     "q3map_alphaMod",    "q3map_indexed",      "q3map_patchShadows",
     "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
 };
 
@@ -361,12 +361,39 @@ private:
             shader.backShader = argToken(shader, token);
         } else if (is("q3map_cloneShader")) {
             shader.cloneShader = argToken(shader, token);
+        } else if (is("q3map_remapShader")) {
+            shader.remapShader = argToken(shader, token);
+        } else if (is("q3map_tcMod")) {
+            parseTcMod(shader, token);
         } else if (is("q3map_tcGen")) {
             parseTcGen(shader, token);
         } else if (isIgnoredQ3mapDirective(token)) {
             // Not lighting related.
         } else if (!applySurfaceParm(std::string_view(token).substr(6), shader)) {
             log_.warning(where() + ": shader '" + shader.name + "': unknown directive '" + token + "'");
+        }
+    }
+
+    // q3map_tcMod translate|shift|offset s t, scale s t, rotate degrees: each one composes into the
+    // shader's matrix as q3map2 does (a rotation applies before what came earlier).
+    void parseTcMod(ShaderInfo& shader, const std::string& token) {
+        const std::string method = argToken(shader, token);
+        auto& m = shader.tcMod;
+        if (equalsNoCase(method, "translate") || equalsNoCase(method, "shift") || equalsNoCase(method, "offset")) {
+            m[0][2] += argFloat(shader, token);
+            m[1][2] += argFloat(shader, token);
+        } else if (equalsNoCase(method, "scale")) {
+            m[0][0] *= argFloat(shader, token);
+            m[1][1] *= argFloat(shader, token);
+        } else if (equalsNoCase(method, "rotate")) {
+            const double radians = double(argFloat(shader, token)) / 180 * 3.14159265358979323846;
+            const float c = float(std::cos(radians)), s = float(std::sin(radians));
+            const float r[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
+            const auto old = m;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) m[i][j] = old[i][0] * r[0][j] + old[i][1] * r[1][j] + old[i][2] * r[2][j];
+        } else {
+            log_.warning(where() + ": shader '" + shader.name + "': unknown q3map_tcMod method '" + method + "'");
         }
     }
 

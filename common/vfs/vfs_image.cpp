@@ -14,14 +14,20 @@ std::string withoutExtension(std::string_view name) {
     return std::string(name.substr(0, dot));
 }
 
-Image decodeFromVfs(const Vfs& vfs, const std::string& path, const std::vector<uint8_t>& bytes) {
+// Runs a decoder on a VFS file, naming the archive the file came from in its errors (the decoder
+// only knows the VFS path).
+template <class Decode>
+auto fromVfs(const Vfs& vfs, const std::string& path, Decode decode) {
     try {
-        return decodeImage(bytes, path);
+        return decode();
     } catch (const ImageError& error) {
-        // Say which archive the bad file came from; the decoder only knew the VFS path.
         auto source = vfs.sourceOf(path);
         throw ImageError(std::string(error.what()) + (source ? " (from " + *source + ")" : ""));
     }
+}
+
+Image decodeFromVfs(const Vfs& vfs, const std::string& path, const std::vector<uint8_t>& bytes) {
+    return fromVfs(vfs, path, [&] { return decodeImage(bytes, path); });
 }
 
 }  // namespace
@@ -50,6 +56,13 @@ std::optional<LoadedImage> loadImage(const Vfs& vfs, std::string_view name) {
         }
         return loaded;
     }
+    return std::nullopt;
+}
+
+std::optional<ImageDimensions> loadImageDimensions(const Vfs& vfs, std::string_view name) {
+    for (const std::string& candidate : imageCandidates(name))
+        if (auto bytes = vfs.read(candidate))
+            return fromVfs(vfs, candidate, [&] { return imageDimensions(*bytes, candidate); });
     return std::nullopt;
 }
 

@@ -27,4 +27,8 @@ std::vector<std::string> imageCandidates(std::string_view name);
 // ImageError when the file found is malformed (the message names the VFS path and its source).
 std::optional<LoadedImage> loadImage(const Vfs& vfs, std::string_view name);
 
+// The size of the image loadImage would find (its alpha companion does not change it), read from
+// the header where the format allows; nullopt when no candidate exists; ImageError when malformed.
+std::optional<ImageDimensions> loadImageDimensions(const Vfs& vfs, std::string_view name);
+
 }  // namespace q3

@@ -50,6 +50,14 @@ Image decodeJpeg(std::span<const uint8_t> bytes, std::string_view name);
 Image decodePng(std::span<const uint8_t> bytes, std::string_view name);
 // Picks the decoder from the signature, falling back to the name's extension (TGA).
 Image decodeImage(std::span<const uint8_t> bytes, std::string_view name);
+// Width and height only: a JPEG's come from its header alone (frame header checked, scan data not
+// decoded); other formats are decoded. Throws ImageError as the decoders do.
+struct ImageDimensions {
+    int width = 0;
+    int height = 0;
+};
+ImageDimensions jpegDimensions(std::span<const uint8_t> bytes, std::string_view name);
+ImageDimensions imageDimensions(std::span<const uint8_t> bytes, std::string_view name);
 
 // Uncompressed true-colour TGA as q3map2 writes external lightmaps (lm_NNNN.tga): type 2,
 // bottom-left origin with the rows stored bottom-up so the picture reads upright, BGR(A) order.

@@ -48,4 +48,12 @@ Image decodeImage(std::span<const uint8_t> bytes, std::string_view name) {
     throw ImageError(std::string(name) + ": unknown image format (not TGA, JPEG or PNG)");
 }
 
+ImageDimensions imageDimensions(std::span<const uint8_t> bytes, std::string_view name) {
+    ImageFormat format = sniffImageFormat(bytes);
+    if (format == ImageFormat::Unknown) format = imageFormatFromName(name);
+    if (format == ImageFormat::Jpeg) return jpegDimensions(bytes, name);
+    const Image image = decodeImage(bytes, name);
+    return {image.width, image.height};
+}
+
 }  // namespace q3

@@ -53,9 +53,10 @@ void cmykToRgba(std::vector<uint8_t>& pixels) {
     }
 }
 
-// Returns false after a libjpeg error, with the message in decode.error.message.
+// Returns false after a libjpeg error, with the message in decode.error.message. With headerOnly
+// the size is read from the header and no pixel is decoded.
 bool runJpegDecode(JpegDecode& decode, std::span<const uint8_t> bytes, int& width, int& height, bool& cmyk,
-                   std::string& limitMessage) {
+                   std::string& limitMessage, bool headerOnly = false) {
     decode.info.err = jpeg_std_error(&decode.error.manager);
     decode.error.manager.error_exit = onJpegError;
     decode.error.manager.emit_message = onJpegMessage;
@@ -68,6 +69,11 @@ bool runJpegDecode(JpegDecode& decode, std::span<const uint8_t> bytes, int& widt
         decode.info.image_height > unsigned(kMaxImageDimension)) {
         limitMessage = "size " + std::to_string(decode.info.image_width) + "x" +
                        std::to_string(decode.info.image_height) + " exceeds " + std::to_string(kMaxImageDimension);
+        return true;
+    }
+    if (headerOnly) {
+        width = int(decode.info.image_width);
+        height = int(decode.info.image_height);
         return true;
     }
     cmyk = decode.info.jpeg_color_space == JCS_CMYK || decode.info.jpeg_color_space == JCS_YCCK;
@@ -89,6 +95,18 @@ bool runJpegDecode(JpegDecode& decode, std::span<const uint8_t> bytes, int& widt
 }
 
 }  // namespace
+
+ImageDimensions jpegDimensions(std::span<const uint8_t> bytes, std::string_view name) {
+    JpegDecode decode;
+    ImageDimensions d;
+    bool cmyk = false;
+    std::string limitMessage;
+    if (!runJpegDecode(decode, bytes, d.width, d.height, cmyk, limitMessage, true))
+        throw ImageError(std::string(name) + ": bad JPEG: " + decode.error.message);
+    if (!limitMessage.empty()) throw ImageError(std::string(name) + ": bad JPEG: " + limitMessage);
+    if (d.width <= 0 || d.height <= 0) throw ImageError(std::string(name) + ": bad JPEG: empty picture");
+    return d;
+}
 
 Image decodeJpeg(std::span<const uint8_t> bytes, std::string_view name) {
     JpegDecode decode;

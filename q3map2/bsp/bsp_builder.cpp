@@ -7,6 +7,7 @@
 
 #include "script.h"
 #include "shader_info.h"
+#include "shaping/autosprite2.h"
 #include "surface_triangles.h"
 
 namespace q3::bspstage {
@@ -74,7 +75,9 @@ int BspBuilder::shader(const char* name, uint32_t contentFlags, uint32_t surface
 }
 
 int BspBuilder::shader(const ShaderInfo& si) {
-    return shader(map_.shaderName(si).c_str(), si.contentFlags, map_.flagRules.surfaceFlags(si));
+    auto [it, added] = shaderEntries_.try_emplace(&si, 0);
+    if (added) it->second = shader(map_.shaderName(si).c_str(), si.contentFlags, map_.flagRules.surfaceFlags(si));
+    return it->second;
 }
 
 void BspBuilder::beginModel(const BspEntity& e) {
@@ -143,7 +146,13 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, 
     const int number = int(out_.surfaces.size());
     bsp::Surface s{};
     const bool flare = ds.kind == SurfaceKind::Flare || ds.kind == SurfaceKind::Shader;
-    s.shaderNum = options.debugSurfaces && !flare ? shader(shaders_.find("debugsurfaces")) : shader(si);
+    if (options.debugSurfaces && !flare)
+        s.shaderNum = shader(shaders_.find("debugsurfaces"));
+    else if (ds.extraSurfaceFlags == 0)
+        s.shaderNum = shader(si);
+    else
+        s.shaderNum = shader(map_.shaderName(si).c_str(), si.contentFlags,
+                             map_.flagRules.surfaceFlags(si) | ds.extraSurfaceFlags);
     s.fogNum = ds.fogNum;
     s.lightmapNum = bsp::kLightmapByVertex;
     if (flare) {
@@ -158,7 +167,7 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, 
         return number;
     }
     if (ds.kind == SurfaceKind::Patch) {
-        if (si.invert) {
+        if (si.invert || ds.backSide) {
             for (bsp::DrawVert& v : ds.verts)
                 for (float& c : v.normal) c = -c;
             for (int y = 0; y < ds.patchHeight; ++y)
@@ -173,12 +182,14 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, 
             s.lightmapVecs[1][k] = float(ds.lodBounds.maxs[k]);
         }
     } else {
-        if (si.invert) {
+        if (si.invert || ds.backSide) {
             for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i], ds.indexes[i + 1]);
             for (bsp::DrawVert& v : ds.verts)
                 for (float& c : v.normal) c = -c;
             ds.planeNormal = -ds.planeNormal;
         }
+        if (si.autosprite2)
+            if (std::string why = fixAutosprite2(ds); !why.empty()) warnings_.push_back(std::move(why));
         const bool soup = (ds.lightmapAxis == Vec3{0, 0, 0} && !ds.planar) || ds.kind == SurfaceKind::Triangles ||
                           ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts ||
                           options.debugSurfaces;
@@ -219,14 +230,19 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, 
 
 void BspBuilder::fixBrushSides(const std::vector<DrawSurface>& surfaces) {
     for (const DrawSurface& ds : surfaces) {
-        if (ds.outputNum < 0 || ds.brush < 0) continue;
-        const bsp::Brush& brush = out_.brushes[size_t(firstBrush_ + ds.brush)];
-        // q3map2's copy of a fog side for the back face was never written, and its output number
-        // is still 0: the file's first brush side takes that face's shader.
-        bsp::BrushSide& side = out_.brushSides[ds.fogBackFace ? 0 : size_t(brush.firstSide + ds.side)];
+        if (ds.outputNum < 0) continue;
         const std::string& name = map_.shaderName(*ds.shader);
-        if (std::strncmp(out_.shaders[size_t(side.shaderNum)].name, name.c_str(), sizeof(bsp::Shader::name)) != 0)
-            side.shaderNum = shader(*ds.shader);
+        auto fix = [&](const SideRef& ref) {
+            if (ref.brush < 0) return;
+            const bsp::Brush& brush = out_.brushes[size_t(firstBrush_ + ref.brush)];
+            // q3map2's copy of a fog side for the back face was never written, and its output
+            // number is still 0: the file's first brush side takes that face's shader.
+            bsp::BrushSide& side = out_.brushSides[ref.fogBackFace ? 0 : size_t(brush.firstSide + ref.side)];
+            if (std::strncmp(out_.shaders[size_t(side.shaderNum)].name, name.c_str(), sizeof(bsp::Shader::name)) != 0)
+                side.shaderNum = shader(*ds.shader);
+        };
+        fix({ds.brush, ds.side, ds.fogBackFace});
+        for (const SideRef& ref : ds.metaSides) fix(ref);
     }
 }
 

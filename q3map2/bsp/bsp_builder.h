@@ -5,6 +5,9 @@
 #pragma once
 
 #include <map>
+#include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "bsp_brushes.h"
@@ -51,6 +54,8 @@ public:
     void emitPlanes(const PlaneSet& planes);
 
     int nextSurface() const { return int(out_.surfaces.size()); }
+    // Warnings of the surfaces written since the last call (autosprite2 quads left as they were).
+    std::vector<std::string> takeWarnings() { return std::exchange(warnings_, {}); }
     int brushOutput(int brushIndex) const { return firstBrush_ + brushIndex; }
 
 private:
@@ -64,7 +69,10 @@ private:
     int firstBrush_ = 0;
     // Start positions in drawIndexes of every three-index run, for the run search.
     std::map<std::array<int, 3>, std::vector<int>> indexRuns_;
+    // The entry each shader was given: entries are only appended, so the first match stays first.
+    std::unordered_map<const ShaderInfo*, int> shaderEntries_;
     size_t indexedUpTo_ = 0;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace q3::bspstage

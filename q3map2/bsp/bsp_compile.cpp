@@ -1,6 +1,7 @@
 #include "bsp_compile.h"
 
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "autocaulk.h"
@@ -17,6 +18,7 @@
 #include "patch_surfaces.h"
 #include "script.h"
 #include "shader_info.h"
+#include "shaping/finish_surfaces.h"
 #include "srf_writer.h"
 #include "structure_emit.h"
 #include "surface_filter.h"
@@ -42,6 +44,41 @@ struct ModelContext {
     int mapSurfacesBefore = 0;  // draw surfaces of the models already written (q3map2 numbers them on)
 };
 
+// q3map_remapShader: the BSP names a shader by its remap, keeping the original shader's flags (q3map2
+// renames the entries as it writes the file).
+void remapShaderNames(bsp::Bsp& bsp, const ShaderTable& shaders) {
+    for (bsp::Shader& s : bsp.shaders) {
+        const ShaderInfo& si = shaders.find(std::string(s.name, strnlen(s.name, sizeof s.name)));
+        if (si.remapShader.empty()) continue;
+        std::memset(s.name, 0, sizeof s.name);
+        std::strncpy(s.name, si.remapShader.c_str(), sizeof s.name - 1);
+    }
+}
+
+void debugCounts(Log& log, std::initializer_list<std::pair<int, const char*>> counts) {
+    for (const auto& [value, what] : counts) log.debug(countLine(value, what));
+}
+
+// -meta and forced-meta shaders (q3map2 MakeEntityMetaTriangles ... MergeMetaTriangles), and the
+// collision patches -patchmeta leaves.
+void makeMeta(ModelContext& c, const BspEntity& entity, std::vector<DrawSurface>& surfaces) {
+    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.in.textures, c.options.classify, c.random,
+                                  &c.in.shaders};
+    const meta::MetaCounts m = meta::makeMetaSurfaces(surfaces, inputs, c.options.meta, c.log);
+    if (m.metaSurfaces > 0 || m.patchMeta > 0) {
+        c.log.debug("--- MakeEntityMetaTriangles ---");
+        debugCounts(c.log, {{m.metaSurfaces, "total meta surfaces"}, {m.stripped, "stripped surfaces"},
+                            {m.fanned, "fanned surfaces"}, {m.maxArea, "maxarea'd surfaces"},
+                            {m.patchMeta, "patch meta surfaces"}, {m.metaVerts, "meta verts"},
+                            {m.metaTriangles, "meta triangles"}});
+        c.log.debug("--- SmoothMetaTriangles ---");
+        c.log.debug(countLine(m.smoothed, "smoothed vertexes"));
+        c.log.debug("--- MergeMetaTriangles ---");
+        debugCounts(c.log, {{m.merged.surfaces, "surfaces merged"}, {m.merged.mergedVerts, "vertexes merged"}});
+    }
+    meta::markPatchCollision(surfaces, *entity.source, c.options.meta);
+}
+
 // The steps both kinds of model share once their faces exist: tessellation, classification,
 // filtering into the tree and writing (q3map2 SubdivideFaceSurfaces ... FilterDrawsurfsIntoTree,
 // FixBrushSides, EndModel).
@@ -51,19 +88,17 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     if (c.options.tjunctions) {
         c.log.debug("--- FixTJunctions ---");
         const TJunctionCounts t = fixTJunctions(surfaces);
-        c.log.debug(countLine(t.axialLines, "axial edge lines"));
-        c.log.debug(countLine(t.nonAxialLines, "non-axial edge lines"));
-        c.log.debug(countLine(t.degenerateEdges, "degenerate edges"));
-        c.log.debug(countLine(t.addedVerts, "verts added for T-junctions"));
-        c.log.debug(countLine(t.totalVerts, "total verts"));
-        c.log.debug(countLine(t.natural, "naturally ordered"));
-        c.log.debug(countLine(t.rotated, "rotated orders"));
-        c.log.debug(countLine(t.cantOrder, "can't order"));
-        c.log.debug(countLine(t.broken, "broken (degenerate) surfaces removed"));
+        debugCounts(c.log, {{t.axialLines, "axial edge lines"}, {t.nonAxialLines, "non-axial edge lines"},
+                            {t.degenerateEdges, "degenerate edges"}, {t.addedVerts, "verts added for T-junctions"},
+                            {t.totalVerts, "total verts"}, {t.natural, "naturally ordered"},
+                            {t.rotated, "rotated orders"}, {t.cantOrder, "can't order"},
+                            {t.broken, "broken (degenerate) surfaces removed"}});
     }
     c.log.debug("--- ClassifyEntitySurfaces ---");
+    finishSurfaces(surfaces, {c.in.file, c.in.shaders, c.options.celShader, c.options.maxDrawSurfaces});
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    makeMeta(c, entity, surfaces);
     if (c.options.debugPortals && entityIndex == 0) {
         c.log.debug("--- MakeDebugPortalSurfs ---");
         for (DrawSurface& ds : debugPortalSurfaces(tree, c.in.map.planes, c.in.shaders)) surfaces.push_back(std::move(ds));
@@ -82,7 +117,6 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     TriangulationCounts triangles;
     int references = 0, emitted = 0;
     const FlareColors noColors;
-    // Surface flares are appended while the list is walked, and filtered after the others.
     // Surface flares and _skybox copies are appended while the list is walked, and filtered after
     // the others; a copy skips what its original went through before filtering.
     const std::optional<ModelTransform> skybox = entityIndex == 0 ? skyboxTransform(c.in.map.entities) : std::nullopt;
@@ -90,6 +124,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
         const bool isSkyCopy = surfaces[i].skyboxCopy;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
+        if (!isSkyCopy) applyTcMod(surfaces[i]);
         if (c.options.flares && !isSkyCopy)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
@@ -117,6 +152,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
             classifySurface(ds, c.in.map.planes, c.options.classify);
         }
         c.builder.emitSurface(ds, c.options.emit, c.mapSurfacesBefore + int(i));
+        for (const std::string& w : c.builder.takeWarnings()) c.log.warning(w);
         references += refs;
         ++emitted;
         c.written.push_back(std::make_unique<DrawSurface>(ds));
@@ -215,6 +251,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     log.debug(countLine(int(builder.bsp().models.size()), "bspModels in total"));
     emitFogs(fogs, map, brushOutputs, builder, log);
     builder.emitPlanes(map.planes);
+    remapShaderNames(builder.bsp(), in.shaders);
     builder.bsp().entities = bsp::unparseEntities(bspEntities(map, options.entities));
 
     std::vector<const DrawSurface*> order;

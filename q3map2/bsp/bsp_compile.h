@@ -9,6 +9,7 @@
 #include "entity_lump.h"
 #include "face_surfaces.h"
 #include "flares.h"
+#include "meta/meta_surfaces.h"
 #include "surface_classify.h"
 #include "model_clip.h"
 #include "world_structure.h"
@@ -36,6 +37,8 @@ struct BspCompileOptions {
     bool renameModelShaders = false;  // -rename: misc_model shaders get _BSP / _RMG_BSP
     bool autocaulk = false;     // -autocaulk: stop after the world's visible hulls with the .caulk text
     bool debugPortals = false;  // -debugportals: a face for every passable portal of the world tree
+    meta::MetaOptions meta;     // -meta, -patchmeta and their limits
+    std::string celShader;      // -celshader, "textures/" in front; empty: none
     bool verboseEntities = false;  // -verboseentities: keep -v output for brush models
     int maxDrawSurfaces = 0x20000;  // -maxmapdrawsurfs
     ClipOptions clip;               // -clipdepth, -debugclip, -snap for misc_model clip brushes

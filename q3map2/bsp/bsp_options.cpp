@@ -70,19 +70,41 @@ cli::OptionTable<O> buildTable() {
                                    kImplemented));
     t.push_back(clampedInt({"-mv"}, &O::maxLightmappedVerts, 3,
                            "Most vertices of a lightmapped surface; larger ones become triangle soup (at least 3)"));
-    t.push_back(refused({"-mi"}, {intArg()}, "Most indexes of a meta surface (meta surfaces are not made yet)"));
-    t.push_back(refused({"-np"}, {floatArg()}, "Shade angle of meta triangles (meta surfaces are not made yet)"));
+    t.push_back(clampedInt({"-mi"}, &O::maxIndexes, 3, "Most indexes of a meta surface (at least 3)"));
+    t.push_back(cli::custom<O>({"-np"}, {floatArg()}, 1, "0",
+                               "Smooth meta triangle normals with this shade angle and let meta surfaces leave "
+                               "their plane",
+                               kImplemented, [](O& o, std::span<const ArgValue> v) {
+                                   o.npDegrees = std::max(0.0f, float(v[0].number));
+                               }));
     t.push_back(clampedInt({"-snap"}, &O::bevelSnap, 0, "Snap added axial bevel planes inwards to multiples of N"));
     t.push_back(flag<O>({"-nobrushsnap"}, &O::noBrushSnap, "Do not round brush face vertices to 1/8 unit",
                         kImplemented));
     t.push_back(flag<O>({"-nohint"}, &O::noHint, "Disable hint brushes", kImplemented));
     t.push_back(refused({"-flat"}, {}, "Flat shading: one texture coordinate per shader"));
-    t.push_back(refused({"-celshader"}, {textArg("shader")}, "Global cel shader"));
-    t.push_back(refused({"-meta"}, {}, "Combine brush faces into meta triangle surfaces"));
-    t.push_back(refused({"-metaadequatescore"}, {intArg()}, "Adequate score for adding triangles to meta surfaces"));
-    t.push_back(refused({"-metagoodscore"}, {intArg()}, "Good score for adding triangles to meta surfaces"));
-    t.push_back(refused({"-metamaxbboxdistance"}, {floatArg()}, "Largest bounds growth of a meta surface"));
-    t.push_back(refused({"-patchmeta"}, {}, "Turn patches into triangle meta surfaces"));
+    t.push_back(cli::custom<O>({"-celshader"}, {textArg("shader")}, 1, "none",
+                               "Cel shade every surface with this shader (textures/ is put in front)", kImplemented,
+                               [](O& o, std::span<const ArgValue> v) { o.celShader = "textures/" + v[0].text; }));
+    t.push_back(flag<O>({"-meta"}, &O::meta, "Combine brush faces into meta triangle surfaces", kImplemented));
+    t.push_back(cli::custom<O>({"-metaadequatescore"}, {intArg()}, 1, "110000",
+                               "Adequate score for adding triangles to meta surfaces (negative: the default)",
+                               kImplemented, [](O& o, std::span<const ArgValue> v) {
+                                   o.metaAdequateScore = std::max(-1, int(v[0].number));
+                               }));
+    t.push_back(cli::custom<O>({"-metagoodscore"}, {intArg()}, 1, "120200",
+                               "Good score for adding triangles to meta surfaces (negative: the default)",
+                               kImplemented, [](O& o, std::span<const ArgValue> v) {
+                                   o.metaGoodScore = std::max(-1, int(v[0].number));
+                               }));
+    t.push_back(cli::custom<O>({"-metamaxbboxdistance"}, {floatArg()}, 1, "off",
+                               "A triangle joins a meta surface only with a corner this close to its bounds "
+                               "(negative: off)",
+                               kImplemented, [](O& o, std::span<const ArgValue> v) {
+                                   o.metaMaxBBoxDistance = v[0].number < 0 ? -1.0f : float(v[0].number);
+                               }));
+    t.push_back(flag<O>({"-patchmeta"}, &O::patchMeta,
+                        "Turn patches into triangle meta surfaces (the patch stays, nodraw, for collision)",
+                        kImplemented));
     t.push_back(flag<O>({"-flares"}, &O::flares,
                         "Emit flare surfaces (q3map_flare shaders, light entities with _flare or _flareshader)",
                         kImplemented));
@@ -120,7 +142,7 @@ cli::OptionTable<O> buildTable() {
     t.push_back(flag<O>({"-autocaulk"}, &O::autocaulk,
                         "Only write <map>.caulk (what each world brush side could become) for the editor", kImplemented));
     t.push_back(refused({"-texrange"}, {intArg()},
-                        "Limit the texture range of meta surfaces (meta surfaces are not made yet)"));
+                        "Limit the texture range of meta surfaces (older q3map2; 2.5.17n has no such limit)"));
     return t;
 }
 

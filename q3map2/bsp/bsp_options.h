@@ -28,6 +28,14 @@ struct BspOptions {
     float normalEpsilon = 0.00005f;  // -ne
     float distanceEpsilon = 0.005f;  // -de
     int maxLightmappedVerts = 64;    // -mv (at least 3)
+    int maxIndexes = 6000;           // -mi (at least 3)
+    bool meta = false;               // -meta
+    bool patchMeta = false;          // -patchmeta
+    float npDegrees = 0;             // -np: meta shade angle (at least 0)
+    int metaAdequateScore = -1;      // -metaadequatescore (negative: built in)
+    int metaGoodScore = -1;          // -metagoodscore (negative: built in)
+    float metaMaxBBoxDistance = -1;  // -metamaxbboxdistance (negative: off)
+    std::string celShader;           // -celshader, with textures/ in front
     bool noBrushSnap = false;    // -nobrushsnap
     bool noHint = false;         // -nohint
     bool flares = false;         // -flares / -noflares (quake3's default: off)

@@ -67,6 +67,17 @@ BspCompileOptions compileOptions(const BspOptions& o, const CommonOptions& commo
     c.classify.minSampleSize = o.minSampleSize;
     c.classify.maxSurfaceVerts = std::max(999, o.maxLightmappedVerts);
     c.emit.maxLightmappedVerts = o.maxLightmappedVerts;
+    c.meta.meta = o.meta;
+    c.celShader = o.celShader;
+    c.meta.patchMeta = o.patchMeta;
+    c.meta.maxArea = o.maxArea;
+    c.meta.limits.maxLightmappedVerts = o.maxLightmappedVerts;
+    c.meta.limits.maxSurfaceVerts = c.classify.maxSurfaceVerts;
+    c.meta.limits.maxIndexes = o.maxIndexes;
+    c.meta.limits.adequateScore = o.metaAdequateScore;
+    c.meta.limits.goodScore = o.metaGoodScore;
+    c.meta.limits.npDegrees = o.npDegrees;
+    c.meta.limits.maxBBoxDistance = o.metaMaxBBoxDistance;
     c.emit.debugInset = o.debugInset;
     c.emit.debugSurfaces = o.debugSurfaces;
     c.clip = {o.clipDepth, o.debugClip, o.bevelSnap};

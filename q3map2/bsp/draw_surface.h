@@ -35,6 +35,14 @@ std::string_view surfaceKindName(SurfaceKind kind);  // "ESurfaceType::Face", as
 
 inline constexpr int kNoFog = -1;
 
+// A brush side a surface was drawn from (q3map2 sideRef_t), by its brush's index in the entity's
+// list; the reversed copy of a fog face has no side of its own (see DrawSurface::fogBackFace).
+struct SideRef {
+    int brush = -1;
+    int side = -1;
+    bool fogBackFace = false;
+};
+
 struct DrawSurface {
     SurfaceKind kind = SurfaceKind::Face;
     const ShaderInfo* shader = nullptr;
@@ -68,6 +76,12 @@ struct DrawSurface {
     int castShadows = 1;
     int receiveShadows = 1;
 
+    float shadeAngle = 0;        // entity _shadeangle in degrees: meta triangles smooth their normals
+    std::vector<SideRef> metaSides;  // meta surfaces: the sides their triangles came from
+    uint32_t extraSurfaceFlags = 0;  // added to the shader's in the BSP (-patchmeta collision patches)
+    const ShaderInfo* celShader = nullptr;  // copied as a cel surface (entity _celshader, -celshader)
+    bool backSide = false;                  // a q3map_backShader copy: written facing the other way
+
     int outputNum = -1;  // BSP surface number once written
 
     // _skybox: a surface drawn in a _skybox leaf gets a copy moved into the sky (skyboxCopy), drawn
@@ -84,6 +98,7 @@ struct EntitySurfaceParams {
     int receiveShadows = 1;
     int sampleSize = 0;       // _lightmapsamplesize / _samplesize / _ss
     float lightmapScale = 0;  // lightmapscale / _lightmapscale / _ls
+    float shadeAngle = 0;     // _shadeangle / _smoothnormals / _sn / _sa / _smooth (degrees)
 };
 
 }  // namespace q3::bspstage

@@ -43,6 +43,22 @@ std::vector<BspFace> makeFaceList(const std::vector<Brush>& brushes, bool deep, 
     return faces;
 }
 
+// Which side of `plane` a face lies on. Most faces are far from most planes: their bounding box
+// decides with a safe margin over the per-point test's rounding, and only near ones are tested
+// point by point (the answer is the same either way).
+PlaneSide faceSide(const Winding& w, const DBounds& bounds, const DPlane& plane) {
+    constexpr double kMargin = kOnEpsilon + 0.125;
+    double lo = -plane.dist, hi = -plane.dist;
+    for (int i = 0; i < 3; ++i) {
+        const double n = plane.normal[i];
+        lo += n * (n > 0 ? bounds.mins[i] : bounds.maxs[i]);
+        hi += n * (n > 0 ? bounds.maxs[i] : bounds.mins[i]);
+    }
+    if (lo > kMargin) return PlaneSide::Front;
+    if (hi < -kMargin) return PlaneSide::Back;
+    return windingOnPlaneSide(w, plane);
+}
+
 struct Split {
     int planeNum = -1;  // -1: make a leaf
     uint32_t compileFlags = 0;
@@ -52,6 +68,14 @@ struct Split {
 struct SplitScoring {
     bool alternate = false;                   // -altsplit
     std::unordered_map<int, int> timesUsed;  // per plane, for -altsplit
+    // Faces on one plane see the same counts; q3map2 counts again for each, here a plane's
+    // counts are kept for the rest of the selection (`countedAt` is the selection that made them).
+    struct Counts {
+        int facing = 0, splits = 0, front = 0, back = 0;
+    };
+    std::vector<int> countedAt;
+    std::vector<Counts> counts;
+    int selection = 0;
 };
 
 Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, PlaneSet& planes, const BlockSize& block,
@@ -63,23 +87,26 @@ Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, Plane
     }
     int bestValue = -99999;
     const BspFace* best = nullptr;
-    // q3map2 scores every face, but the counts depend on its plane alone: each plane is counted once.
-    struct Counts {
-        int facing = 0, splits = 0, front = 0, back = 0;
-    };
-    std::unordered_map<int, Counts> counted;
-    counted.reserve(faces.size());
+    const int selection = ++scoring.selection;
+    if (scoring.countedAt.size() < size_t(planes.size())) {
+        scoring.countedAt.resize(size_t(planes.size()), 0);
+        scoring.counts.resize(size_t(planes.size()));
+    }
+    std::vector<DBounds> bounds;
+    bounds.reserve(faces.size());
+    for (const BspFace& f : faces) bounds.push_back(windingBounds(f.winding));
     for (const BspFace& split : faces) {
         const MapPlane& plane = planes[split.planeNum];
-        auto [at, added] = counted.try_emplace(split.planeNum);
-        Counts& c = at->second;
-        if (added) {
-            for (const BspFace& check : faces) {
-                if (check.planeNum == split.planeNum) {
+        SplitScoring::Counts& c = scoring.counts[size_t(split.planeNum)];
+        if (scoring.countedAt[size_t(split.planeNum)] != selection) {
+            scoring.countedAt[size_t(split.planeNum)] = selection;
+            c = {};
+            for (size_t i = 0; i < faces.size(); ++i) {
+                if (faces[i].planeNum == split.planeNum) {
                     ++c.facing;
                     continue;
                 }
-                switch (windingOnPlaneSide(check.winding, plane.plane)) {
+                switch (faceSide(faces[i].winding, bounds[i], plane.plane)) {
                 case PlaneSide::Cross: ++c.splits; break;
                 case PlaneSide::Front: ++c.front; break;
                 case PlaneSide::Back: ++c.back; break;
@@ -87,7 +114,7 @@ Split selectSplit(const TreeNode& node, const std::vector<BspFace>& faces, Plane
                 }
             }
         }
-        const int facing = c.facing, splits = c.splits, front = c.front, back = c.back;
+        const auto [facing, splits, front, back] = c;
         int value;
         if (scoring.alternate) {
             // Balanced, large, rarely used planes first.
@@ -207,7 +234,7 @@ Tree buildFaceTree(std::vector<BspFace> faces, PlaneSet& planes, const BlockSize
     Tree tree;
     for (const BspFace& f : faces) tree.bounds.add(windingBounds(f.winding));
     const int faceCount = int(faces.size());
-    Builder builder{tree, planes, blockSize, SplitScoring{alternateSplit, {}}};
+    Builder builder{tree, planes, blockSize, SplitScoring{alternateSplit, {}, {}, {}, 0}};
     tree.head = builder.newNode(-1, tree.bounds);
     builder.build(tree.head, std::move(faces));
     if (counts) *counts = {faceCount, builder.leafs};

@@ -126,6 +126,7 @@ EntitySurfaceParams entitySurfaceParams(const map::MapEntity& entity, bool world
     p.receiveShadows = intKey(entity, {"_receiveShadows", "_rs"}, 1);
     p.sampleSize = std::max(0, intKey(entity, {"_lightmapsamplesize", "_samplesize", "_ss"}, 0));
     p.lightmapScale = float(std::max(0.0, floatKey(entity, {"lightmapscale", "_lightmapscale", "_ls"})));
+    p.shadeAngle = float(std::max(0.0, floatKey(entity, {"_shadeangle", "_smoothnormals", "_sn", "_sa", "_smooth"})));
     return p;
 }
 
@@ -158,6 +159,7 @@ DrawSurface faceSurface(const BspEntity& entity, int brushIndex, int sideIndex, 
     ds.receiveShadows = params.receiveShadows;
     ds.sampleSize = params.sampleSize;
     ds.lightmapScale = params.lightmapScale;
+    ds.shadeAngle = params.shadeAngle;
 
     map::TextureVecs vecs;
     if (!shader.tcGen && side.face) {

@@ -179,6 +179,7 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
         ds.receiveShadows = params.receiveShadows;
         ds.sampleSize = params.sampleSize;
         ds.lightmapScale = params.lightmapScale;
+        ds.shadeAngle = params.shadeAngle;
         for (const map::PatchControl& c : p.control) {
             bsp::DrawVert dv{};
             c.xyz.toArray(dv.xyz);

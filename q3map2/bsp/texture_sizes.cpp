@@ -30,8 +30,8 @@ Measured measure(const ShaderInfo& shader, const Vfs& vfs) {
     if (shader.isNoDraw()) return out;  // nodraw faces are never drawn: q3map2 gives them the default
     for (const std::string& name : shader.textureImageCandidates()) {
         try {
-            if (std::optional<LoadedImage> image = loadImage(vfs, name)) {
-                out.size = {image->image.width, image->image.height};
+            if (std::optional<ImageDimensions> image = loadImageDimensions(vfs, name)) {
+                out.size = {image->width, image->height};
                 return out;
             }
         } catch (const std::exception& e) {
@@ -48,7 +48,7 @@ TextureSizes TextureSizes::load(const std::vector<const ShaderInfo*>& shaders, c
     std::vector<const ShaderInfo*> unique;
     for (const ShaderInfo* shader : shaders)
         if (shader && std::find(unique.begin(), unique.end(), shader) == unique.end()) unique.push_back(shader);
-    // Images are decoded in parallel into one slot per shader; warnings follow the shader order.
+    // Images are measured in parallel into one slot per shader; warnings follow the shader order.
     std::vector<Measured> measured(unique.size());
     tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) { measured[i] = measure(*unique[i], vfs); });
     TextureSizes out;

@@ -1,6 +1,8 @@
 #include "tjunctions.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <list>
@@ -65,12 +67,21 @@ public:
             ++counts.degenerateEdges;
             return -1;
         }
+        // Faces sharing an edge register it twice: its line is the one found the first time (lines
+        // never change and later ones come after it), and its ends are on that line already --
+        // unless that line does not hold its own ends (a degenerate pair of normals, which q3map2
+        // makes for directions like (1, 1, -1)): then the edge is looked for again.
+        const EdgeKey key = edgeKey(v1, v2);
+        if (auto known = known_.find(key); known != known_.end() && holds(lines[size_t(known->second)], v1, v2))
+            return known->second;
         const int found = firstHolding(v1, v2);
         if (found >= 0) {
             insert(v1, lines[size_t(found)]);
             insert(v2, lines[size_t(found)]);
+            known_.insert_or_assign(key, found);
             return found;
         }
+        known_.insert_or_assign(key, int(lines.size()));
         EdgeLine& e = lines.emplace_back();
         e.origin = v1;
         e.dir = dir;
@@ -83,6 +94,7 @@ public:
         const int axis = alongAxis(dir);
         if (axis < 0) {
             general_.push_back(index);
+            generalPlanes_.push_back({e.normal1.x, e.normal1.y, e.normal1.z, e.dist1});
         } else {
             const auto [a, b] = otherAxes(axis);
             cells_[cellKey(axis, cellOf(v1[a]), cellOf(v1[b]))].push_back(index);
@@ -92,6 +104,25 @@ public:
 
 private:
     using CellKey = uint64_t;
+    using EdgeKey = std::array<uint32_t, 6>;
+
+    // The two ends' bit patterns, lower end first, so that both directions of an edge meet.
+    static EdgeKey edgeKey(const Vec3& v1, const Vec3& v2) {
+        std::array<uint32_t, 3> a, b;
+        for (int k = 0; k < 3; ++k) {
+            a[size_t(k)] = std::bit_cast<uint32_t>(v1[k]);
+            b[size_t(k)] = std::bit_cast<uint32_t>(v2[k]);
+        }
+        if (b < a) std::swap(a, b);
+        return {a[0], a[1], a[2], b[0], b[1], b[2]};
+    }
+    struct EdgeKeyHash {
+        size_t operator()(const EdgeKey& k) const {
+            uint64_t h = 0xcbf29ce484222325ull;
+            for (uint32_t v : k) h = (h ^ v) * 0x100000001b3ull;
+            return size_t(h);
+        }
+    };
 
     static int alongAxis(const Vec3& dir) {
         for (int k = 0; k < 3; ++k)
@@ -114,9 +145,14 @@ private:
     // The smallest index of a line holding both ends, or -1.
     int firstHolding(const Vec3& v1, const Vec3& v2) const {
         int best = std::numeric_limits<int>::max();
-        for (int index : general_) {
-            if (index >= best) break;
-            if (holds(lines[size_t(index)], v1, v2)) best = index;
+        // Most lines miss the first end on their first plane: that test reads a compact copy.
+        for (size_t i = 0; i < general_.size(); ++i) {
+            const std::array<float, 4>& p = generalPlanes_[i];
+            if (!nearlyEqual(v1.x * p[0] + v1.y * p[1] + v1.z * p[2], p[3], kPointOnLineEpsilon)) continue;
+            if (holds(lines[size_t(general_[i])], v1, v2)) {
+                best = general_[i];
+                break;
+            }
         }
         for (int axis = 0; axis < 3; ++axis) {
             const auto [a, b] = otherAxes(axis);
@@ -146,7 +182,9 @@ private:
     }
 
     std::vector<int> general_;  // lines not along an axis, in creation order
+    std::vector<std::array<float, 4>> generalPlanes_;  // their first plane (normal1, dist1)
     std::unordered_map<CellKey, std::vector<int>> cells_;
+    std::unordered_map<EdgeKey, int, EdgeKeyHash> known_;  // the line of every edge registered
 };
 
 bool isAxial(const Vec3& dir) { return std::fabs(dir.x + dir.y + dir.z) == 1.0f; }

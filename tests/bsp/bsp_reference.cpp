@@ -22,6 +22,23 @@ namespace q3::bspstage::test {
 namespace fs = std::filesystem;
 using namespace q3::test;
 
+fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options, std::string* log) {
+    fs::remove_all(work);
+    fs::create_directories(work / "maps");
+    const fs::path map = work / "maps" / mapSource.filename();
+    fs::copy_file(mapSource, map);
+    CommonOptions common;
+    common.basePaths.push_back(openArenaBase().string());
+    common.baseGame = "baseoa";
+    common.mapPath = fs::path(map).replace_extension(".bsp");
+    common.commandLine = "-bsp";
+    Log out(false);
+    out.setVerbose(log != nullptr);
+    if (log) out.addSink([log](LogLevel, std::string_view text) { log->append(text).append("\n"); });
+    runBspStage(options, common, out);
+    return common.mapPath;
+}
+
 fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, const std::string& extraOptions,
                           bool meta) {
     const std::string name = mapSource.stem().string();
@@ -60,28 +77,16 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     return final;
 }
 
-fs::path ourCompile(const fs::path& mapSource, const fs::path& work, const BspOptions& options) {
-    fs::remove_all(work);
-    fs::create_directories(work / "maps");
-    const fs::path map = work / "maps" / mapSource.filename();
-    fs::copy_file(mapSource, map);
-    CommonOptions common;
-    common.basePaths.push_back(openArenaBase().string());
-    common.baseGame = "baseoa";
-    common.mapPath = fs::path(map).replace_extension(".bsp");
-    common.commandLine = "-bsp";
-    Log log(false);
-    runBspStage(options, common, log);
-    return common.mapPath;
-}
-
 fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
+    std::string options;
+    for (const std::string& arg : sampleOptions(name)) options += " " + shellQuote(arg);
     std::string output;
     const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
-                                      " -fs_basegame samples -bsp " + shellQuote(work / "samples/maps" / (name + ".map")),
+                                      " -fs_basegame samples -bsp" + options + " " +
+                                      shellQuote(work / "samples/maps" / (name + ".map")),
                                   &output);
     EXPECT_EQ(status, 0) << output;
     return work / "samples/maps";

@@ -16,12 +16,12 @@ namespace q3::bspstage::test {
 std::filesystem::path referenceCompile(const std::filesystem::path& reference, const std::filesystem::path& mapSource,
                                        const std::string& extraOptions = {}, bool meta = true);
 
-// Our plain -bsp of `mapSource` (with `options`) in a scratch `work`/maps/ folder, over the OpenArena
-// data; returns the .bsp path.
+// Our compile of a map source in a scratch maps/ folder `work` (emptied first), with the OpenArena
+// data; returns the .bsp path. With `log`, the -v output is appended to it.
 std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const std::filesystem::path& work,
-                                 const BspOptions& options = {});
+                                 const BspOptions& options = {}, std::string* log = nullptr);
 
-// The reference's plain -bsp of the sample `name` (bsp-samples) in `work`/samples/maps/, uncached
+// The reference's -bsp of the sample `name` (bsp-samples, with the sample's options) in `work`/samples/maps/, uncached
 // (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
 std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
                                              const std::filesystem::path& work);

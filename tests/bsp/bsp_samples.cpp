@@ -1,9 +1,13 @@
 #include "bsp_samples.h"
 
 #include <algorithm>
+#include <sstream>
 
+#include "bsp_options.h"
 #include "bsp_stage.h"
+#include "file_io.h"
 #include "log.h"
+#include "option_parser.h"
 
 namespace q3::bspstage::test {
 
@@ -27,6 +31,16 @@ std::vector<std::string> sampleOutputExtensions(const fs::path& dir, const std::
     return out;
 }
 
+std::vector<std::string> sampleOptions(const std::string& name) {
+    const std::string text = readFileText(samplesRoot() / "samples" / "maps" / (name + ".map"));
+    const std::string prefix = "// options:";
+    std::vector<std::string> args;
+    if (text.compare(0, prefix.size(), prefix) != 0) return args;
+    std::istringstream line(text.substr(prefix.size(), text.find('\n') - prefix.size()));
+    for (std::string arg; line >> arg;) args.push_back(arg);
+    return args;
+}
+
 fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
     fs::remove_all(work);
     fs::create_directories(work);
@@ -35,9 +49,13 @@ fs::path compileSample(const std::string& name, const fs::path& work, Log* log) 
     common.basePaths.push_back(work.string());
     common.baseGame = "samples";
     common.mapPath = work / "samples" / "maps" / (name + ".bsp");
+    const std::vector<std::string> args = sampleOptions(name);
     common.commandLine = "-bsp";
+    for (const std::string& arg : args) common.commandLine += " " + arg;
+    BspOptions options;
+    cli::parseOptions(bspOptionTable(), args, cli::ParseContext{}, options);
     Log quiet(false);
-    runBspStage(BspOptions{}, common, log ? *log : quiet);
+    runBspStage(options, common, log ? *log : quiet);
     return work / "samples" / "maps";
 }
 

@@ -20,6 +20,9 @@ std::vector<std::string> sampleNames();
 // The files a compile of a sample writes: .bsp, .srf, and .prt or .lin.
 std::vector<std::string> sampleOutputExtensions(const std::filesystem::path& dir, const std::string& name);
 
+// The -bsp options a sample is compiled with: its first line "// options: -meta ..." (none without).
+std::vector<std::string> sampleOptions(const std::string& name);
+
 // Copies the sample game folder under `work` and runs -bsp on the sample there (quiet); returns the
 // folder holding the outputs. Throws what the stage throws. Messages go to `log` when given.
 std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work, Log* log = nullptr);

@@ -90,7 +90,7 @@ TEST_F(CliExecutable, UsageErrorsExitWithTwoAndOneLine) {
 }
 
 TEST_F(CliExecutable, WhatThisBuildLacksIsSaidExplicitly) {
-    expectUsageError("-bsp -meta m.map", "-meta is a q3map2 option this build does not implement yet");
+    expectUsageError("-bsp -custinfoparms m.map", "-custinfoparms is a q3map2 option this build does not implement yet");
     expectUsageError("-analyze m.bsp", "-analyze is a q3map2 stage this build does not implement yet");
     expectUsageError("-light -fast -thresh 2 m.bsp", "-thresh is a q3map2 option this build does not implement yet");
     expectUsageError("-light -randomsamples m.bsp", "-randomsamples is a q3map2 option this build does not implement yet");

@@ -84,10 +84,10 @@ TEST(FeedbackExecutable, RunStreamsItsLinesAsOneDocument) {
 TEST(FeedbackExecutable, RefusedCommandLineReachesTheEditorAsAnError) {
     TcpListener listener({});
     std::string console;
-    int status = runCommand(connectTo(listener) + "-bsp -meta /maps/x.map </dev/null", &console);
+    int status = runCommand(connectTo(listener) + "-bsp -custinfoparms /maps/x.map </dev/null", &console);
     listener.join();
     EXPECT_EQ(status, 2);
-    const std::string error = "-meta is a q3map2 option this build does not implement yet";
+    const std::string error = "-custinfoparms is a q3map2 option this build does not implement yet";
     EXPECT_EQ(console, "ERROR: " + error + "\n");
     std::vector<Message> messages = messagesOf(listener.joined());
     const Message* m = findMessage(messages, error);

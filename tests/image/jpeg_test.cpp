@@ -33,6 +33,20 @@ TEST(JpegDecode, RgbMatchesWithinCompressionError) {
     EXPECT_LE(worst, 6);
 }
 
+// The size from the header alone equals the decoded one; a cut header and a non-JPEG fail, and
+// imageDimensions decodes the other formats.
+TEST(JpegDecode, DimensionsFromTheHeaderMatchTheDecodedPicture) {
+    const std::vector<uint8_t> bytes = buildJpeg(48, 40, 3, smoothRgb(48, 40), 90);
+    const ImageDimensions d = jpegDimensions(bytes, "smooth.jpg");
+    EXPECT_EQ(d.width, 48);
+    EXPECT_EQ(d.height, 40);
+    const ImageDimensions any = imageDimensions(bytes, "smooth.tga");  // content wins over the name
+    EXPECT_EQ(any.width, 48);
+    EXPECT_EQ(any.height, 40);
+    EXPECT_THROW(jpegDimensions(std::span(bytes).first(20), "cut.jpg"), ImageError);
+    EXPECT_THROW(jpegDimensions(std::vector<uint8_t>(64, 7), "noise.jpg"), ImageError);
+}
+
 TEST(JpegDecode, GreyscaleExpandsToRgb) {
     std::vector<uint8_t> grey(16 * 8);
     for (size_t i = 0; i < grey.size(); ++i) grey[i] = uint8_t(100 + i % 16);

@@ -201,7 +201,7 @@ TEST(InfoCommandLine, UsageErrorsExitWithTwo) {
         {{"-info"}, "-info needs a map file as its last argument (-info [options] <filename.bsp>)"},
         {{"-info", "-fast", "m.bsp"}, "unknown option '-fast' (see q3map2 -help info)"},
         {{"-info", "-v", "m.bsp"}, "common option -v must come before the stage switch -info"},
-        {{"-bsp", "-meta", "m.map"}, "-meta is a q3map2 option this build does not implement yet"},
+        {{"-bsp", "-custinfoparms", "m.map"}, "-custinfoparms is a q3map2 option this build does not implement yet"},
         {{"-threads", "x", "-info", "m.bsp"}, "-threads: 'x' is not an integer (-threads <N>)"},
     };
     for (const Case& c : cases) {

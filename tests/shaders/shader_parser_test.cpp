@@ -330,6 +330,32 @@ textures/c/d { q3map_surfacelight 10
     EXPECT_TRUE(cap.warnings.empty()) << cap.all();
 }
 
+// q3map_tcMod steps compose in script order into one matrix (a rotation applies before what came
+// earlier, as q3map2 multiplies); q3map_remapShader keeps its target's name.
+TEST(ShaderParser, TcModComposesInScriptOrderAndRemapKeepsItsTarget) {
+    const ShaderInfo si = parseOne(R"(x
+{
+    q3map_tcMod scale 2 0.5
+    q3map_tcMod rotate 90
+    q3map_tcMod translate 0.25 0.5
+    q3map_remapShader textures/other/target
+}
+)");
+    const auto& m = si.tcMod;
+    // scale, then rotate: [[2 0 0] [0 .5 0]] * [[c -s 0] [s c 0]] with c = 0, s = 1.
+    EXPECT_NEAR(m[0][0], 0, 1e-6f);
+    EXPECT_NEAR(m[0][1], -2, 1e-6f);
+    EXPECT_NEAR(m[1][0], 0.5f, 1e-6f);
+    EXPECT_NEAR(m[1][1], 0, 1e-6f);
+    EXPECT_FLOAT_EQ(m[0][2], 0.25f);
+    EXPECT_FLOAT_EQ(m[1][2], 0.5f);
+    EXPECT_EQ(si.remapShader, "textures/other/target");
+    EXPECT_EQ(parseOne("y\n{\n}\n").tcMod[0][0], 1);  // identity without directives
+    CapturedLog cap;
+    parse("z\n{\n q3map_tcMod wobble 1 2\n}\n", cap);
+    EXPECT_NE(cap.all().find("unknown q3map_tcMod method 'wobble'"), std::string::npos) << cap.all();
+}
+
 TEST(ShaderParser, BaseShaderInheritsEarlierDefinition) {
     CapturedLog cap;
     auto shaders = parse(R"(base/light

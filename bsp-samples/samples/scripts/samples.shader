@@ -112,3 +112,53 @@ textures/common/clip
 	surfaceparm noimpact
 	surfaceparm playerclip
 }
+
+textures/samples/cloned
+{
+	q3map_textureSize 128 128
+	q3map_cloneShader textures/samples/clonecopy
+}
+
+textures/samples/clonecopy
+{
+	q3map_textureSize 128 128
+	surfaceparm nolightmap
+}
+
+textures/samples/backed
+{
+	q3map_textureSize 128 128
+	q3map_backShader textures/samples/backcopy
+}
+
+textures/samples/backcopy
+{
+	q3map_textureSize 64 64
+	surfaceparm nolightmap
+}
+
+textures/samples/remapped
+{
+	q3map_textureSize 128 128
+	q3map_remapShader textures/samples/remaptarget
+}
+
+textures/samples/remaptarget
+{
+	q3map_textureSize 128 128
+	surfaceparm nomarks
+}
+
+textures/samples/tcmodded
+{
+	q3map_textureSize 128 128
+	q3map_tcMod scale 2 0.5
+	q3map_tcMod rotate 30
+	q3map_tcMod translate 0.25 0.5
+}
+
+textures/samples/cel
+{
+	q3map_textureSize 32 32
+	surfaceparm nolightmap
+}

@@ -1,0 +1,49 @@
+// Shader copies against q3map2 2.5.17n on the shader_copies sample (-meta): q3map_cloneShader,
+// q3map_backShader, q3map_remapShader, q3map_tcMod and _celshader give the same bytes in every
+// lump but the entities (which record the command line), and the same .srf and .prt.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "bsp_reference.h"
+#include "bsp_samples.h"
+#include "bspfile.h"
+#include "file_io.h"
+#include "reference_fixture.h"
+#include "test_data.h"
+
+namespace q3::bspstage {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace q3::bspstage::test;
+
+class ShaderCopiesReference : public conformance::ReferenceTest<int> {};
+
+TEST_P(ShaderCopiesReference, EveryLumpButTheEntitiesEqualsQ3map2s) {
+    const fs::path work = q3::test::tempDir() / ("shader-copies-" + std::to_string(::getpid()));
+    const fs::path ours = compileSample("shader_copies", work / "ours");
+    const fs::path theirs = referenceSampleCompile(reference(), "shader_copies", work / "ref");
+    const bsp::Bsp a = bsp::readBsp(ours / "shader_copies.bsp"), b = bsp::readBsp(theirs / "shader_copies.bsp");
+    for (int lump = 0; lump < bsp::kMaxLumps; ++lump)
+        if (lump != bsp::LUMP_ENTITIES)
+            EXPECT_TRUE(bsp::lumpBytes(a, lump) == bsp::lumpBytes(b, lump)) << bsp::lumpName(lump);
+    EXPECT_EQ(readFileText(ours / "shader_copies.srf"), readFileText(theirs / "shader_copies.srf"));
+    EXPECT_EQ(readFileText(ours / "shader_copies.prt"), readFileText(theirs / "shader_copies.prt"));
+    // The sample must exercise what it claims: the remap target and every copy's shader are named.
+    std::vector<std::string> names;
+    for (const bsp::Shader& s : a.shaders) names.emplace_back(s.name, strnlen(s.name, sizeof s.name));
+    for (const char* name : {"textures/samples/remaptarget", "textures/samples/clonecopy", "textures/samples/backcopy",
+                             "textures/samples/cel"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    EXPECT_EQ(std::find(names.begin(), names.end(), "textures/samples/remapped"), names.end());
+    fs::remove_all(work);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, ShaderCopiesReference, ::testing::Values(0));
+
+}  // namespace
+}  // namespace q3::bspstage
