@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 #include <tuple>
+#include <utility>
 
 #include "file_io.h"
 #include "image.h"
@@ -95,6 +96,22 @@ TEST(LightmapPack, FirstFitInSortedOrder) {
     EXPECT_EQ(q.placements[1].x, 0);
     EXPECT_EQ(q.placements[2].x, 5);
     EXPECT_EQ(q.placements[0].y, 3);
+    // Shared lightmaps compare the sorted shader names of their surfaces in turn, then fewer styles
+    // (a larger sum of style slots) first, then the area.
+    std::vector<LightmapBlock> shared = {gradient(4, 4, 0), gradient(4, 4, 100), gradient(4, 4, 170), gradient(2, 2, 9)};
+    shared[0].shaderNames = {"a", "z"};
+    shared[1].shaderNames = {"a", "b"};
+    shared[2].shaderNames = {"a", "b"};
+    shared[2].styleSum = 2 * 255;  // one more style: after its equal
+    shared[3].shaderNames = {"c"};
+    const PackedLightmaps r = packLightmaps(shared, slow(8));
+    ASSERT_EQ(r.pages.size(), 1u);
+    auto corner = [&](size_t i) { return std::pair<int, int>{r.placements[i].x, r.placements[i].y}; };
+    EXPECT_EQ(corner(1), (std::pair<int, int>{0, 0}));
+    EXPECT_EQ(corner(2), (std::pair<int, int>{4, 0}));
+    EXPECT_EQ(corner(0), (std::pair<int, int>{0, 4}));
+    EXPECT_EQ(corner(3), (std::pair<int, int>{4, 4}));  // the solid one: one texel
+    EXPECT_TRUE(r.placements[3].solid);
 }
 
 TEST(LightmapPack, CollapseAndNoCollapse) {
@@ -371,10 +388,10 @@ TEST(LightmapPack, PlacementsAreTheFirstFitOfATexelByTexelSearch) {
 
             std::vector<size_t> order(blocks.size());
             for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-            std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-                const long areaA = long(blocks[a].width) * blocks[a].height;
-                const long areaB = long(blocks[b].width) * blocks[b].height;
-                return std::tie(blocks[a].sortKey, areaB, a) < std::tie(blocks[b].sortKey, areaA, b);
+            // q3map2's order: std::sort by shader, then larger area (equal ones as introsort leaves them).
+            std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+                if (blocks[a].sortKey != blocks[b].sortKey) return blocks[a].sortKey < blocks[b].sortKey;
+                return long(blocks[a].width) * blocks[a].height > long(blocks[b].width) * blocks[b].height;
             });
             std::vector<std::vector<uint8_t>> pages;
             auto used = [&](const LightmapBlock& b, bool solid, int sx, int sy) {
@@ -393,9 +410,9 @@ TEST(LightmapPack, PlacementsAreTheFirstFitOfATexelByTexelSearch) {
                 if (at.twinOf >= 0) continue;
                 const LightmapBlock& b = blocks[index];
                 const bool solid = at.solid;
-                int needed = 0;
+                int needed = 0;  // every used texel, even of a solid lightmap stored as one
                 for (int sy = 0; sy < b.height; ++sy)
-                    for (int sx = 0; sx < b.width; ++sx) needed += used(b, solid, sx, sy);
+                    for (int sx = 0; sx < b.width; ++sx) needed += used(b, false, sx, sy);
                 int page = -1, px = 0, py = 0;
                 for (size_t p = 0; p < pages.size() && page < 0; ++p) {
                     const int free = int(std::count(pages[p].begin(), pages[p].end(), 0));
@@ -423,6 +440,23 @@ TEST(LightmapPack, PlacementsAreTheFirstFitOfATexelByTexelSearch) {
             EXPECT_EQ(packed.pages.size(), pages.size());
         }
     }
+}
+
+// q3map2 keeps -1 in the luxels nothing reached and takes them into its solid test, so a lightmap
+// with such a hole is never solid, however even its light.
+TEST(LightmapPack, HolesKeepALightmapFromBeingSolid) {
+    LightmapBlock holed = uniformBlock(3, 3, {10, 10, 10});
+    holed.light.assign(9, Vec3{10, 10, 10});
+    holed.used.assign(9, 1);
+    holed.used[4] = 0;
+    LightmapBlock whole = holed;
+    whole.used.assign(9, 1);
+    const std::vector<LightmapBlock> blocks = {holed, whole};
+    const PackedLightmaps p = packLightmaps(blocks, slow(8));
+    EXPECT_FALSE(p.placements[0].solid);
+    EXPECT_EQ(p.placements[0].width, 3);
+    EXPECT_TRUE(p.placements[1].solid);
+    EXPECT_EQ(p.placements[1].width, 1);
 }
 
 }  // namespace

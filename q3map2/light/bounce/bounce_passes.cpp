@@ -2,7 +2,9 @@
 #include "bounce_passes.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <span>
 
 #include "bounce_lights.h"
 #include "file_io.h"
@@ -14,11 +16,12 @@
 namespace q3::light {
 namespace {
 
-// Vertices and triangles of a lit surface in world space, with texture and lightmap coordinates.
-void emitterGeometry(const LightContext& ctx, const SurfaceLight& lit, BounceSurface& out) {
-    const bsp::Surface& s = ctx.bsp.surfaces[size_t(lit.surfaceNum)];
-    const Vec3 offset = ctx.surfaceOffsets[size_t(lit.surfaceNum)];
-    const auto& coords = lit.layout.vertexCoords;
+// Vertices and triangles of a lit surface in world space, with texture and lightmap coordinates
+// (`coords`: its draw vertices' coordinates in the lightmap it shares).
+void emitterGeometry(const LightContext& ctx, int surfaceNum, std::span<const std::array<float, 2>> coords,
+                     BounceSurface& out) {
+    const bsp::Surface& s = ctx.bsp.surfaces[size_t(surfaceNum)];
+    const Vec3 offset = ctx.surfaceOffsets[size_t(surfaceNum)];
     auto lightmapCoord = [&](int v) { return size_t(v) < coords.size() ? coords[size_t(v)] : std::array<float, 2>{}; };
     if (s.surfaceType == bsp::MST_PATCH) {
         // The lighting tessellation carries texture and lightmap coordinates through the curve.
@@ -67,27 +70,31 @@ std::vector<Light> BouncePasses::emitters(const std::vector<SurfaceLight>& previ
     std::vector<BounceSurface> surfaces;
     for (const SurfaceLight& lit : previous) {
         if (!lit.ok) continue;
-        const bsp::Surface& s = ctx_.bsp.surfaces[size_t(lit.surfaceNum)];
-        const size_t shaderNum = size_t(s.shaderNum);
-        BounceSurface geometry;
-        geometry.surfaceNum = lit.surfaceNum;
-        geometry.shader = &ctx_.shaders.shaders[shaderNum];
-        geometry.shaderBounceScale = ctx_.shaders.shaders[shaderNum].bounceScale;
-        if (shaderNum < albedo_.size()) {
-            geometry.image = albedo_[shaderNum].image;
-            geometry.averageColor = albedo_[shaderNum].average;
-        }
-        geometry.width = lit.width;
-        geometry.height = lit.height;
-        geometry.lit = lit.used;
-        emitterGeometry(ctx_, lit, geometry);
-        for (const LightmapLayer& layer : lit.layers) {
-            BounceSurface styled = geometry;
-            styled.style = layer.style;
-            styled.luxels = layer.color;
-            if (layer.style == 0)
-                for (Vec3& c : styled.luxels) c = vmax(c - ambient, Vec3{});
-            surfaces.push_back(std::move(styled));
+        // Every surface of a shared lightmap emits from its own triangles (q3map2 walks surfaces).
+        for (size_t m = 0; m < lit.layout.surfaces.size() && m < lit.layout.surfaceCoords.size(); ++m) {
+            const int surfaceNum = lit.layout.surfaces[m];
+            const bsp::Surface& s = ctx_.bsp.surfaces[size_t(surfaceNum)];
+            const size_t shaderNum = size_t(s.shaderNum);
+            BounceSurface geometry;
+            geometry.surfaceNum = surfaceNum;
+            geometry.shader = &ctx_.shaders.shaders[shaderNum];
+            geometry.shaderBounceScale = ctx_.shaders.shaders[shaderNum].bounceScale;
+            if (shaderNum < albedo_.size()) {
+                geometry.image = albedo_[shaderNum].image;
+                geometry.averageColor = albedo_[shaderNum].average;
+            }
+            geometry.width = lit.width;
+            geometry.height = lit.height;
+            geometry.lit = lit.used;
+            emitterGeometry(ctx_, surfaceNum, lit.layout.surfaceCoords[m], geometry);
+            for (const LightmapLayer& layer : lit.layers) {
+                BounceSurface styled = geometry;
+                styled.style = layer.style;
+                styled.luxels = layer.color;
+                if (layer.style == 0)
+                    for (Vec3& c : styled.luxels) c = vmax(c - ambient, Vec3{});
+                surfaces.push_back(std::move(styled));
+            }
         }
     }
     BounceSettings settings;

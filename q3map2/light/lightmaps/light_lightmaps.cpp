@@ -34,10 +34,15 @@ std::vector<int> lightmappedSurfaces(const LightContext& ctx) {
     return surfaces;
 }
 
-// q3map2 lights the surfaces that share a raw lightmap together, with the lights seen from a cluster
-// of any of them: per surface, the union of the surfaceClusters of its group.
-std::vector<std::vector<int>> lightmapGroupClusters(const LightContext& ctx, std::span<const int> surfaces,
-                                                    const LayoutOptions& layoutOptions) {
+// The raw lightmaps of q3map2's SetupSurfaceLightmaps: groups of surfaces (BSP surface numbers, in
+// its order) that share one lightmap and are lit together, with the lights seen from a cluster of
+// any of them (`clusters`: per surface, the union of the surfaceClusters of its group).
+struct LightmapGroups {
+    std::vector<std::vector<int>> groups;
+    std::vector<std::vector<int>> clusters;
+};
+
+LightmapGroups lightmapGroups(const LightContext& ctx, std::span<const int> surfaces, const LayoutOptions& layoutOptions) {
     std::vector<int> modelOf(ctx.bsp.surfaces.size(), 0);
     for (size_t m = 0; m < ctx.bsp.models.size(); ++m) {
         const bsp::Model& model = ctx.bsp.models[m];
@@ -71,21 +76,25 @@ std::vector<std::vector<int>> lightmapGroupClusters(const LightContext& ctx, std
         in.traits.filterRadius = shader.lightmapFilterRadius;
         inputs.push_back(std::move(in));
     }
-    std::vector<std::vector<int>> out(ctx.bsp.surfaces.size());
+    LightmapGroups out;
+    out.clusters.resize(ctx.bsp.surfaces.size());
     for (const std::vector<size_t>& group : groupSurfacesForLightmaps(inputs)) {
         std::vector<int> clusters;
+        std::vector<int>& members = out.groups.emplace_back();
         for (size_t k : group) {
+            members.push_back(surfaces[k]);
             const std::vector<int>& own = ctx.surfaceClusters[size_t(surfaces[k])];
             clusters.insert(clusters.end(), own.begin(), own.end());
         }
         std::sort(clusters.begin(), clusters.end());
         clusters.erase(std::unique(clusters.begin(), clusters.end()), clusters.end());
-        for (size_t k : group) out[size_t(surfaces[k])] = clusters;
+        for (size_t k : group) out.clusters[size_t(surfaces[k])] = clusters;
     }
     return out;
 }
 
-std::vector<SurfaceLight> lightPass(const LightContext& ctx, std::span<const int> surfaces,
+// Lights every raw lightmap (a group of surfaces) for one pass, in parallel, one slot each.
+std::vector<SurfaceLight> lightPass(const LightContext& ctx, const std::vector<std::vector<int>>& surfaces,
                                     const LayoutOptions& layoutOptions, const LuxelPasses* passes,
                                     const SurfacePass& pass, Log& log) {
     const LightingEnv env = surfaceLightingEnv(ctx);
@@ -155,8 +164,15 @@ LightmapBlock styleZeroBlock(const LightContext& ctx, const SurfaceLight& s, con
     }
     block.used = s.used;
     block.sortKey = shader.name;
-    block.surfaces = {s.surfaceNum};
-    block.vertexCoords = {s.layout.vertexCoords};
+    block.surfaces = s.layout.surfaces;
+    block.vertexCoords = s.layout.surfaceCoords;
+    // q3map2 CompareRawLightmap compares the shader names of the surfaces, sorted by name.
+    for (int member : s.layout.surfaces)
+        block.shaderNames.push_back(ctx.shaders.shaders[size_t(ctx.bsp.surfaces[size_t(member)].shaderNum)].name);
+    std::sort(block.shaderNames.begin(), block.shaderNames.end());
+    block.styleSum = 0;  // q3map2's four style slots, 255 when empty
+    for (size_t k = 0; k < size_t(kMaxLightmapStyles); ++k)
+        block.styleSum += k < s.layers.size() ? s.layers[k].style : 255;
     return block;
 }
 
@@ -167,14 +183,17 @@ void vertexLightFromLightmaps(LightContext& ctx, const std::vector<SurfaceLight>
     for (const SurfaceLight& s : lit) {
         if (!s.ok) continue;
         const LightmapLayer* zero = s.layer(0);
-        const bsp::Surface& surface = ctx.bsp.surfaces[size_t(s.surfaceNum)];
-        for (int v = 0; v < surface.numVerts && size_t(v) < s.layout.vertexCoords.size(); ++v) {
-            const auto& st = s.layout.vertexCoords[size_t(v)];
-            const int x = std::clamp(int(st[0]), 0, s.width - 1);
-            const int y = std::clamp(int(st[1]), 0, s.height - 1);
-            const size_t vi = size_t(surface.firstVert + v);
-            ctx.vertexLight[vi] = zero ? zero->color[size_t(y) * size_t(s.width) + size_t(x)] : Vec3{};
-            ctx.vertexFromLightmap[vi] = 1;
+        for (size_t m = 0; m < s.layout.surfaces.size() && m < s.layout.surfaceCoords.size(); ++m) {
+            const bsp::Surface& surface = ctx.bsp.surfaces[size_t(s.layout.surfaces[m])];
+            const auto& coords = s.layout.surfaceCoords[m];
+            for (int v = 0; v < surface.numVerts && size_t(v) < coords.size(); ++v) {
+                const auto& st = coords[size_t(v)];
+                const int x = std::clamp(int(st[0]), 0, s.width - 1);
+                const int y = std::clamp(int(st[1]), 0, s.height - 1);
+                const size_t vi = size_t(surface.firstVert + v);
+                ctx.vertexLight[vi] = zero ? zero->color[size_t(y) * size_t(s.width) + size_t(x)] : Vec3{};
+                ctx.vertexFromLightmap[vi] = 1;
+            }
         }
     }
 }
@@ -188,7 +207,7 @@ struct StoreResult {
 StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bool final, Log& log) {
     const LightOptions& o = ctx.options;
     const std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx);
-    // One block per lit surface, in surface order; made in parallel (each its own slot and surface).
+    // One block per lit raw lightmap, in their order; made in parallel (each its own slot and surfaces).
     std::vector<size_t> litIndex;
     for (size_t k = 0; k < lit.size(); ++k)
         if (lit[k].ok) litIndex.push_back(k);
@@ -198,7 +217,7 @@ StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bo
         tbb::parallel_for(size_t(0), litIndex.size(), [&](size_t b) {
             const SurfaceLight& s = lit[litIndex[b]];
             blocks[b] = styleZeroBlock(ctx, s, deluxe ? &*deluxe : nullptr);
-            applyLightmapOrigin(ctx.bsp.surfaces[size_t(s.surfaceNum)], s.layout);
+            for (int member : s.layout.surfaces) applyLightmapOrigin(ctx.bsp.surfaces[size_t(member)], s.layout);
         });
     });
     std::vector<StyledLightmap> styled;
@@ -236,9 +255,10 @@ StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bo
 
 void lightLightmaps(LightContext& ctx, Log& log) {
     const LightOptions& o = ctx.options;
-    const std::vector<int> surfaces = lightmappedSurfaces(ctx);
     const LayoutOptions layoutOptions = layoutOptionsFor(ctx, log);
-    ctx.lightmapGroupClusters = lightmapGroupClusters(ctx, surfaces, layoutOptions);
+    LightmapGroups grouped = lightmapGroups(ctx, lightmappedSurfaces(ctx), layoutOptions);
+    ctx.lightmapGroupClusters = std::move(grouped.clusters);
+    const std::vector<std::vector<int>>& surfaces = grouped.groups;
     const LuxelPasses* passes = ctx.luxelPasses.get();
     const bool deluxe = deluxeSettings(ctx).has_value();
 
@@ -281,7 +301,9 @@ void lightLightmaps(LightContext& ctx, Log& log) {
         ctx.bakedLight.assign(ctx.bsp.surfaces.size(), BakedSurfaceLight{});
         for (SurfaceLight& s : total)
             if (s.ok && s.layer(0))
-                ctx.bakedLight[size_t(s.surfaceNum)] = {s.width, s.height, s.layer(0)->color, s.layout.vertexCoords};
+                for (size_t m = 0; m < s.layout.surfaces.size() && m < s.layout.surfaceCoords.size(); ++m)
+                    ctx.bakedLight[size_t(s.layout.surfaces[m])] = {s.width, s.height, s.layer(0)->color,
+                                                                     s.layout.surfaceCoords[m]};
     }
     log.info(strCat(stored.blocks, " lightmaps on ", stored.pages, " pages, ", ctx.stats.luxels, " luxels"));
     if (styleLimitHits > 0)

@@ -33,8 +33,7 @@ Rgb8 solidColor(const LightmapBlock& b) {
     return any ? low : Rgb8{0, 0, 0};
 }
 
-int usedTexels(const LightmapBlock& b, bool solid) {
-    if (solid) return 1;
+int usedTexels(const LightmapBlock& b) {
     int n = 0;
     for (size_t i = 0; i < b.texels.size(); ++i) n += texelUsed(b, i);
     return n;
@@ -235,10 +234,12 @@ bool lightIsSolid(const LightmapBlock& b, Vec3& lowest) {
     Vec3 lo = Vec3::splat(std::numeric_limits<float>::max()), hi = Vec3::splat(-std::numeric_limits<float>::max());
     bool any = false;
     for (size_t i = 0; i < b.light.size(); ++i) {
-        if (!texelUsed(b, i)) continue;
+        // q3map2 stores -1 in a luxel nothing reached, neither a sample nor a neighbour, and its
+        // solid test takes that value in: a lightmap with such holes is not solid.
+        const Vec3 light = texelUsed(b, i) ? b.light[i] : Vec3::splat(-1.0f);
         any = true;
-        lo = vmin(lo, b.light[i]);
-        hi = vmax(hi, b.light[i]);
+        lo = vmin(lo, light);
+        hi = vmax(hi, light);
     }
     lowest = any ? lo : Vec3{};
     if (b.width <= 2 && b.height <= 2) return true;
@@ -342,6 +343,21 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
     return st;
 }
 
+// q3map2 CompareRawLightmap: the shader names in turn (as many as both have), then fewer styles,
+// then the larger area first.
+bool placesBefore(const LightmapBlock& a, const LightmapBlock& b) {
+    const std::span<const std::string> namesA = a.shaderNames.empty() ? std::span(&a.sortKey, 1) : std::span(a.shaderNames);
+    const std::span<const std::string> namesB = b.shaderNames.empty() ? std::span(&b.sortKey, 1) : std::span(b.shaderNames);
+    const size_t common = std::min(namesA.size(), namesB.size());
+    for (size_t i = 0; i < common; ++i) {
+        const int diff = namesA[i].compare(namesB[i]);
+        if (diff != 0) return diff < 0;
+    }
+    if (a.styleSum != b.styleSum) return b.styleSum - a.styleSum < 0;
+    const long areaA = long(a.width) * a.height, areaB = long(b.width) * b.height;
+    return areaB - areaA < 0;
+}
+
 }  // namespace
 
 bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b) {
@@ -384,13 +400,13 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     const std::vector<uint8_t>& solid = collapsed.solid;
     const std::vector<int>& twin = collapsed.twin;
 
+    // q3map2 sorts every raw lightmap, twins included, then skips the twins while placing.
+    std::vector<size_t> sorted(blocks.size());
+    for (size_t i = 0; i < blocks.size(); ++i) sorted[i] = i;
+    std::sort(sorted.begin(), sorted.end(), [&](size_t a, size_t b) { return placesBefore(blocks[a], blocks[b]); });
     std::vector<size_t> order;
-    for (size_t i = 0; i < blocks.size(); ++i)
+    for (size_t i : sorted)
         if (twin[i] < 0) order.push_back(i);
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        const long areaA = long(blocks[a].width) * blocks[a].height, areaB = long(blocks[b].width) * blocks[b].height;
-        return std::tie(blocks[a].sortKey, areaB, a) < std::tie(blocks[b].sortKey, areaA, b);
-    });
 
     std::vector<Page> pages;
     const int pageTexels = pageSize * pageSize;
@@ -398,8 +414,9 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
     for (size_t index : order) {
         const LightmapBlock& b = blocks[index];
         const bool isSolid = solid[index] != 0;
-        // q3map2's early page test counts the texels of the lightmap before any twin merged in.
-        const int needed = usedTexels(b, isSolid);
+        // q3map2's early page test counts the texels of the lightmap before any twin merged in,
+        // solid or not.
+        const int needed = usedTexels(b);
         const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(collapsed.merged(index));
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {

@@ -39,7 +39,13 @@ struct LightmapBlock {
     // many bytes they span), and merged twins are converted again (PackOptions::color).
     std::vector<Vec3> light;
     float brightness = 1;        // q3map_lightmapBrightness of the shader: blocks of different ones never collapse
-    std::string sortKey;         // shader name of the first surface (q3map2 places blocks sorted by it)
+    std::string sortKey;         // shader name of the first surface (the order without shaderNames)
+    // Shader names of the surfaces drawn with this lightmap, sorted (q3map2 CompareRawLightmap
+    // compares them in turn); empty: sortKey alone.
+    std::vector<std::string> shaderNames;
+    // Sum of q3map2's four style slots of the raw lightmap (255 for an empty one): lightmaps with
+    // fewer styles come first.
+    int styleSum = 3 * 255;
     std::vector<int> surfaces;   // BSP surfaces drawn with this lightmap
     // Per surface (same order), per draw vertex: lightmap coordinate in block texel units
     // (0..width, 0..height), as RawLightmap::vertexCoords.
@@ -77,7 +83,9 @@ bool blockIsSolid(const LightmapBlock& block);
 // more than 3 and the mean difference stays within the luxel tolerance.
 bool blocksMatch(const LightmapBlock& a, const LightmapBlock& b);
 
-// Places every block. Deterministic: order = (sortKey, larger area first, input index).
+// Places every block, in q3map2's order: std::sort of the block indices by shader names, style
+// sum and area, larger first (its ties fall as libstdc++'s introsort leaves them, which is
+// deterministic), then first fit page by page as FindOutLightmaps.
 PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackOptions& options);
 
 // -fill: grows the written texels of every page into the unused ones, pass after pass, each unused

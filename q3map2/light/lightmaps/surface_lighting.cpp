@@ -478,9 +478,13 @@ LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log) {
     return layoutOptions;
 }
 
-SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv, int surfaceNum,
+SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv, std::span<const int> surfaceNums,
                           const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass) {
     SurfaceLight result;
+    if (surfaceNums.empty()) return result;
+    // The first surface speaks for the group: its members share model, shader, entity, shadow
+    // group, sample size and projection (lightmap_layout_merge.h).
+    const int surfaceNum = surfaceNums[0];
     result.surfaceNum = surfaceNum;
     // The receive shadow group picks the casters (group 0: lit without occlusion).
     const LightingEnv env = receiverLightingEnv(ctx, sharedEnv, surfaceNum);
@@ -489,9 +493,14 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);
     const LightOptions& o = ctx.options;
 
-    SurfaceGeometry geometry = surfaceGeometry(ctx.bsp, surfaceNum, ctx.shadedNormals);
-    if (surface.surfaceType == bsp::MST_PATCH)
-        geometry.mesh = curvedMesh(ctx.bsp, surface, ctx.shadedNormals, ctx.extras.loaded ? extra.longestCurve : 0.0f);
+    std::vector<SurfaceGeometry> geometries;
+    for (int member : surfaceNums) {
+        SurfaceGeometry& geometry = geometries.emplace_back(surfaceGeometry(ctx.bsp, member, ctx.shadedNormals));
+        const bsp::Surface& memberSurface = ctx.bsp.surfaces[size_t(member)];
+        if (memberSurface.surfaceType == bsp::MST_PATCH)
+            geometry.mesh = curvedMesh(ctx.bsp, memberSurface, ctx.shadedNormals,
+                                       ctx.extras.loaded ? ctx.extras.forSurface(member).longestCurve : 0.0f);
+    }
     SurfaceLightmapParams params;
     params.sampleSize =
         resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize, o.sampleSize, o.sampleScale);
@@ -502,13 +511,18 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     }
     params.sampleOffset = shader.lightmapSampleOffset;
     Log quiet(false);
-    std::optional<RawLightmap> layout = layoutSurfaceLightmap(geometry, params, layoutOptions, &quiet);
+    std::optional<RawLightmap> layout = layoutSurfaceGroup(geometries, params, layoutOptions, &quiet);
     if (!layout) return result;
     RawLightmap& raw = *layout;
 
     const int w = raw.superWidth(), h = raw.superHeight();
     const Vec3 offset = ctx.surfaceOffsets[static_cast<size_t>(surfaceNum)];
-    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, ctx.surfaceClusters[static_cast<size_t>(surfaceNum)]};
+    // Luxels filter their clusters by those of every surface of the lightmap (q3map2's lightClusters).
+    const std::vector<int>& lightmapClusters =
+        surfaceNums.size() > 1 && size_t(surfaceNum) < ctx.lightmapGroupClusters.size()
+            ? ctx.lightmapGroupClusters[size_t(surfaceNum)]
+            : ctx.surfaceClusters[size_t(surfaceNum)];
+    LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, lightmapClusters};
 
     // Sample points of every super luxel.
     const Vec3 ambient = pass.direct ? ctx.world.ambient : Vec3{};

@@ -68,8 +68,10 @@ int clusterSeenBySurface(const BspTree& tree, int cluster, std::span<const int> 
 // The layout options of the stage (from -super, -samplescale, -lightmapsize, ...).
 LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log);
 
-// Lights one surface for one pass. `passes` (floodlight, dirt) apply to the direct pass only.
-SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& env, int surfaceNum,
+// Lights one raw lightmap, the surfaces `surfaceNums` share (q3map2's SetupSurfaceLightmaps groups;
+// one surface alone most often), for one pass. `passes` (floodlight, dirt) apply to the direct pass
+// only.
+SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& env, std::span<const int> surfaceNums,
                           const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass);
 
 }  // namespace q3::light
