@@ -293,19 +293,12 @@ TEST(NetRadiantBuildMenu, EveryCommandLineIsWellShaped) {
 TEST(NetRadiantBuildMenu, EveryCommandLineParsesOrIsRefusedAsNotYetImplemented) {
     BuildMenu menu = readMenu();
     std::map<std::string, std::set<std::string>> missing = missingPerPreset(menu);
-    // -bsp is in this build, its -meta option not yet: the parser says so for every preset that uses
-    // it. Their -vis steps parse.
-    for (const char* label : {"(test)", "(final)", "(final + SH grid)", "(final + SH grid + bounce)"}) {
-        EXPECT_TRUE(missing[label].count("-meta")) << label;
-        EXPECT_FALSE(missing[label].count("-bsp")) << label;
-        EXPECT_FALSE(missing[label].count("-vis")) << label;
+    // Every stage and option of the presets is in this build: -bsp -meta, -vis, -light.
+    for (const char* label : {"(test)", "(final)", "(final + SH grid)", "(final + SH grid + bounce)", "(single)",
+                              "(relight final + SH grid)"}) {
+        ASSERT_TRUE(missing.count(label)) << "no preset " << label;
+        for (const std::string& s : missing[label]) ADD_FAILURE() << label << " needs " << s;
     }
-    // Everything else of these presets, and the single relight, parses completely today.
-    for (const char* label : {"(test)", "(final)", "(final + SH grid)", "(single)"}) {
-        std::set<std::string> notYet = {"-meta"};
-        for (const std::string& s : missing[label]) EXPECT_TRUE(notYet.count(s)) << label << ": " << s;
-    }
-    EXPECT_TRUE(missing["(single)"].empty());
 }
 
 TEST(NetRadiantBuildMenu, ReadmeSaysWhatEachPresetNeedsToday) {
