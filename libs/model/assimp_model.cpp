@@ -29,7 +29,7 @@ public:
         const std::vector<uint8_t>* bytes = load(path);
         if (!bytes) return nullptr;
         auto* copy = new uint8_t[bytes->size() + 1];  // the stream owns it; +1: never a null buffer
-        std::memcpy(copy, bytes->data(), bytes->size());
+        if (!bytes->empty()) std::memcpy(copy, bytes->data(), bytes->size());  // an empty file has no data()
         return new Assimp::MemoryIOStream(copy, bytes->size(), true);
     }
     void Close(Assimp::IOStream* stream) override { delete stream; }
