@@ -9,6 +9,7 @@
 
 #include "bsp_tree.h"
 #include "progress.h"
+#include "trace_scene.h"
 
 namespace q3::light {
 
@@ -208,6 +209,56 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
     };
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
+}
+
+void traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
+                             std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
+                             std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
+                             bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
+                             const BlockContributionFn& visit) {
+    // Per (light, point): its unoccluded contribution and the index of its shadow ray (-1: none).
+    struct Scratch {
+        std::vector<std::optional<LightContribution>> pending;
+        std::vector<int32_t> rayOf;
+        std::vector<ShadowRay> rays;
+        std::vector<Vec3> transmission;
+    };
+    thread_local Scratch s;
+    const size_t np = origins.size(), nl = candidates.size();
+    s.pending.assign(nl * np, std::nullopt);
+    s.rayOf.assign(nl * np, -1);
+    s.rays.clear();
+    LightingEnv deferred = env;
+    deferred.deferredRays = env.scene ? &s.rays : nullptr;
+    LightingEnv deferredClear = deferred;
+    deferredClear.clearOfSolid = true;
+    for (size_t k = 0; k < nl; ++k) {
+        const Light& light = lights[candidates[k]];
+        if (!includes(light)) continue;
+        const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
+        for (size_t p = 0; p < np; ++p) {
+            const size_t before = s.rays.size();
+            std::optional<LightContribution> c =
+                lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
+            if (!c) {
+                s.rays.resize(before);
+                continue;
+            }
+            s.pending[k * np + p] = c;
+            if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
+        }
+    }
+    s.transmission.assign(s.rays.size(), Vec3{1, 1, 1});  // without a scene nothing is traced
+    if (env.scene && !s.rays.empty()) env.scene->traceBatch(s.rays, s.transmission, coherent, axialRaysAlone);
+    for (size_t p = 0; p < np; ++p)
+        for (size_t k = 0; k < nl; ++k) {
+            std::optional<LightContribution>& c = s.pending[k * np + p];
+            if (!c) continue;
+            const int32_t ray = s.rayOf[k * np + p];
+            const Vec3* transmission = ray >= 0 ? &s.transmission[size_t(ray)] : nullptr;
+            if (transmission) c->color *= *transmission;
+            visit(p, candidates[k], *c, transmission);
+        }
 }
 
 void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,

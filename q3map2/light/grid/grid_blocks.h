@@ -128,4 +128,20 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
                      const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
                      const GridBlockFn& lightBlock, const BspTree* solidTree = nullptr);
 
+// The lights `candidates` (indices into `lights`, in order; `clearOfSolid[k]`, when given, as in
+// BlockLights) at free points `origins` / `clusters`, with their shadow rays from all the points
+// traced as one batch (`coherent` and `axialRaysAlone` as TraceScene::traceBatch takes them; each
+// ray gets the same answer it gets alone). Then, point by point and for each point in light order,
+// visit(point, lightIndex, contribution, transmission) for every light that reaches it:
+// contribution.color already multiplied by the ray's transmission (nullptr: no ray was traced).
+// `includes(light)` false leaves a light out; `envelopes` holds lightEnvelope of every light.
+using BlockContributionFn =
+    std::function<void(size_t point, uint32_t lightIndex, const LightContribution& contribution,
+                       const Vec3* transmission)>;
+void traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
+                             std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
+                             std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
+                             bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
+                             const BlockContributionFn& visit);
+
 }  // namespace q3::light

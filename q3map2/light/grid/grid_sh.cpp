@@ -110,46 +110,22 @@ void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light
                              std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
                              std::span<const float> envelopes, std::span<const Vec3> origins,
                              std::span<const int> clusters, const LightingEnv& env) {
-    struct Pending {
-        uint32_t light;
-        uint32_t point;
-        LightContribution contribution;
-        int ray;  // index into rays, -1 = unoccluded
-    };
-    thread_local std::vector<ShadowRay> rays;
-    thread_local std::vector<Pending> pending;
-    thread_local std::vector<Vec3> transmissions;
-    rays.clear();
-    pending.clear();
-    LightingEnv deferred = env;
-    deferred.deferredRays = env.scene ? &rays : nullptr;
-    LightingEnv deferredClear = deferred;
-    deferredClear.clearOfSolid = true;
-    const size_t np = origins.size();
-    for (size_t k = 0; k < candidates.size(); ++k) {
-        const uint32_t lightIndex = candidates[k];
-        const Light& light = lights[lightIndex];
-        if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
-        const float envelope = envelopes.empty() ? lightEnvelope(light, env.settings.forceFast) : envelopes[lightIndex];
-        const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
-        for (size_t p = 0; p < np; ++p) {
-            const size_t before = rays.size();
-            std::optional<LightContribution> c = lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelope);
-            if (c) pending.push_back({lightIndex, uint32_t(p), *c, rays.size() > before ? int(before) : -1});
-        }
+    thread_local std::vector<float> ownEnvelopes;
+    if (envelopes.empty()) {  // one probe's call: only the candidates' envelopes are read
+        ownEnvelopes.assign(lights.size(), 0.0f);
+        for (uint32_t i : candidates) ownEnvelopes[i] = lightEnvelope(lights[i], env.settings.forceFast);
+        envelopes = ownEnvelopes;
     }
-    transmissions.assign(rays.size(), Vec3{1, 1, 1});
     // One stream per block, flagged incoherent: the rays spread from the probes towards every light
     // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
-    if (env.scene && !rays.empty()) env.scene->traceBatch(rays, transmissions, false);
-    // Each probe adds its lights up in light order (pending holds them light by light).
-    for (const Pending& p : pending) {
-        const Vec3 transmission = p.ray >= 0 ? transmissions[size_t(p.ray)] : Vec3{1, 1, 1};
-        if (transmission == Vec3{}) continue;
-        LightContribution c = p.contribution;
-        c.color *= transmission;
-        projectContribution(accs[p.point], lights[p.light], origins[p.point], c, transmission, env.settings, false);
-    }
+    traceBlockContributions(
+        lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false, false,
+        [](const Light& light) { return light.style == 0; },  // IBSP grids hold style 0 only (styled light is switchable)
+        [&](size_t p, uint32_t lightIndex, const LightContribution& c, const Vec3* transmission) {
+            const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
+            if (t == Vec3{}) return;
+            projectContribution(accs[p], lights[lightIndex], origins[p], c, t, env.settings, false);
+        });
 }
 
 void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {

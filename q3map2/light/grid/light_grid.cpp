@@ -15,17 +15,6 @@ namespace {
 
 constexpr int kBlockEdge = 4;              // grid points per block edge (lights culled per block)
 
-// One thread's working space for a block of the batched grid: where each point went, and per
-// (light, point) its unoccluded contribution and the index of its shadow ray (-1: none).
-struct GridBlockScratch {
-    std::vector<std::optional<PlacedGridPoint>> placed;
-    std::vector<std::optional<LightContribution>> pending;
-    std::vector<int32_t> rayOf;
-    std::vector<ShadowRay> rays;
-    std::vector<Vec3> transmission;
-    std::vector<LightContribution> contributions;
-};
-
 GridOptions gridOptionsFromContext(const LightContext& ctx) {
     GridOptions g;
     g.scale = ctx.options.gridScale;
@@ -66,7 +55,7 @@ void lightGrid(LightContext& ctx, Log& log) {
     // the lights that reach its block, in light order.
     LightingEnv clearEnv = env;
     clearEnv.clearOfSolid = true;
-    auto place = [&](size_t i, Vec3) {
+    auto place = [&](size_t i) {
         const std::optional<PlacedGridPoint>& placed = placements[i];
         if (!placed) {
             points[i] = bsp::GridPoint{};
@@ -83,8 +72,8 @@ void lightGrid(LightContext& ctx, Log& log) {
     const float margin = nudgeRadius + 1.0f;
     if (ctx.options.cheapGrid || !env.scene) {
         // Point by point, each ray traced at once: -cheapgrid stops at the first light that saturates.
-        auto lightPoint = [&](size_t i, Vec3 latticePoint, const BlockLights& reaching) {
-            const std::optional<PlacedGridPoint> placed = place(i, latticePoint);
+        auto lightPoint = [&](size_t i, Vec3, const BlockLights& reaching) {
+            const std::optional<PlacedGridPoint> placed = place(i);
             if (!placed) return;
             thread_local std::vector<LightContribution> contributions;
             contributions.clear();
@@ -109,51 +98,31 @@ void lightGrid(LightContext& ctx, Log& log) {
         // origin, nearby ends: coherent batches), then each point adds its lights up in light order,
         // as the point-by-point form does.
         auto lightBlock = [&](std::span<const GridBlockPoint> blockPoints, const BlockLights& reaching) {
-            thread_local GridBlockScratch s;
-            const size_t np = blockPoints.size(), nl = reaching.candidates.size();
-            s.placed.resize(np);
-            for (size_t p = 0; p < np; ++p) s.placed[p] = place(blockPoints[p].index, blockPoints[p].origin);
-            s.pending.assign(nl * np, std::nullopt);
-            s.rayOf.assign(nl * np, -1);
-            s.rays.clear();
-            LightingEnv deferred = env, deferredClear = clearEnv;
-            deferred.deferredRays = deferredClear.deferredRays = &s.rays;
-            for (size_t k = 0; k < nl; ++k) {
-                const uint32_t lightIndex = reaching.candidates[k];
-                const bool clear = !reaching.clearOfSolid.empty() && reaching.clearOfSolid[k];
-                for (size_t p = 0; p < np; ++p) {
-                    if (!s.placed[p]) continue;
-                    const size_t before = s.rays.size();
-                    std::optional<LightContribution> c = lightToGridPoint(ctx.lights[lightIndex], s.placed[p]->origin,
-                                                                          s.placed[p]->cluster,
-                                                                          clear ? deferredClear : deferred,
-                                                                          envelopes[lightIndex]);
-                    if (!c) {
-                        s.rays.resize(before);
-                        continue;
-                    }
-                    s.pending[k * np + p] = c;
-                    if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
+            thread_local std::vector<size_t> index;
+            thread_local std::vector<Vec3> at;
+            thread_local std::vector<int> clusters;
+            thread_local std::vector<std::vector<LightContribution>> contributions;
+            index.clear();
+            at.clear();
+            clusters.clear();
+            for (const GridBlockPoint& p : blockPoints)
+                if (const std::optional<PlacedGridPoint> placed = place(p.index)) {
+                    index.push_back(p.index);
+                    at.push_back(placed->origin);
+                    clusters.push_back(placed->cluster);
                 }
-            }
-            s.transmission.resize(s.rays.size());
+            contributions.resize(std::max(contributions.size(), index.size()));
+            for (size_t k = 0; k < index.size(); ++k) contributions[k].clear();
             // Grid points sit on the map's lattice, often inside a wall's plane: rays along axial
             // planes keep the single-ray answer the grid has always had.
-            if (!s.rays.empty()) env.scene->traceBatch(s.rays, s.transmission, true, true);
-            for (size_t p = 0; p < np; ++p) {
-                if (!s.placed[p]) continue;
-                s.contributions.clear();
-                for (size_t k = 0; k < nl; ++k) {
-                    std::optional<LightContribution>& c = s.pending[k * np + p];
-                    if (!c) continue;
-                    if (const int32_t ray = s.rayOf[k * np + p]; ray >= 0) {
-                        c->color *= s.transmission[size_t(ray)];
-                        if (c->color == Vec3{}) continue;  // blocked, as an immediate trace leaves it out
-                    }
-                    s.contributions.push_back(*c);
-                }
-                store(blockPoints[p].index, s.contributions);
-            }
+            traceBlockContributions(
+                ctx.lights, reaching.candidates, reaching.clearOfSolid, envelopes, at, clusters, env, true, true,
+                [](const Light&) { return true; },
+                [&](size_t p, uint32_t, const LightContribution& c, const Vec3* transmission) {
+                    if (transmission && c.color == Vec3{}) return;  // blocked, as an immediate trace leaves it out
+                    contributions[p].push_back(c);
+                });
+            for (size_t k = 0; k < index.size(); ++k) store(index[k], contributions[k]);
         };
         lightGridBlocks(lattice, ctx.lights, margin, env.settings, kBlockEdge, ctx.threads, progress, lightBlock,
                         ctx.tree.get());
