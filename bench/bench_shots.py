@@ -1,5 +1,6 @@
 """What the screenshot benches share: spawn points of a BSP, ioquake3 shots through
 ../shared/tools/q3-screenshot, and ImageMagick's PSNR of two pictures."""
+import math
 import os
 import re
 import subprocess
@@ -66,3 +67,26 @@ def psnr(a, b):
         return float(text)
     except ValueError:
         return float("inf") if text == "inf" else None
+
+
+def magick(args):
+    return subprocess.run(args, capture_output=True, text=True)
+
+
+def stable_psnr(ref, ref_again, ours, ours_again, work):
+    """PSNR of ours against the reference over the pixels each tool's BSP renders the same way twice:
+    animated shaders (tcMod scroll, animMap, rotating items) change between two renders of one BSP
+    and are left out. Returns (PSNR, share of pixels left out)."""
+    masks = []
+    for i, (a, b) in enumerate(((ref, ref_again), (ours, ours_again))):
+        masks.append(os.path.join(work, "mask%d.png" % i))
+        magick(["compare", "-fuzz", "0", a, b, "-compose", "src", "-highlight-color", "white", "-lowlight-color",
+                "black", masks[-1]])
+    mask = os.path.join(work, "mask.png")
+    magick(["convert", masks[0], masks[1], "-compose", "lighten", "-composite", mask])
+    moving = float(magick(["convert", mask, "-format", "%[fx:mean]", "info:"]).stdout or 0)
+    merged = os.path.join(work, "merged.png")
+    magick(["convert", ours, ref, mask, "-composite", merged])  # moving pixels taken from the reference
+    text = magick(["compare", "-metric", "MSE", ref, merged, "null:"]).stderr
+    mse = float(text[text.find("(") + 1:text.find(")")]) if "(" in text else 0.0
+    return (10 * math.log10((1 - moving) / mse) if mse > 0 else float("inf")), moving

@@ -215,17 +215,21 @@ std::filesystem::path writeRoom(const std::filesystem::path& dir, std::array<uin
     return path;
 }
 
-sh::GridSH runRoom(const std::filesystem::path& path, bool gather, int threads = 1) {
-    LightOptions options;
-    options.sh = true;
-    options.shGather = gather;
-    options.gridSizeSH[0] = options.gridSizeSH[1] = options.gridSizeSH[2] = 64;
+void lightRoom(const std::filesystem::path& path, const LightOptions& options, int threads = 1) {
     CommonOptions common;
     common.mapPath = path;
     common.threads = threads;
     common.commandLine = "-light room.bsp";
     Log log(false);
     EXPECT_EQ(runLightStage(options, common, log), 0);
+}
+
+sh::GridSH runRoom(const std::filesystem::path& path, bool gather, int threads = 1) {
+    LightOptions options;
+    options.sh = true;
+    options.shGather = gather;
+    options.gridSizeSH[0] = options.gridSizeSH[1] = options.gridSizeSH[2] = 64;
+    lightRoom(path, options, threads);
     const bsp::Bsp lit = bsp::readBsp(path);
     sh::GridSH grid;
     std::string err;
@@ -272,6 +276,40 @@ TEST(ShGatherStage, BlackFloorAddsExactlyNothing) {
     ASSERT_EQ(plain.points.size(), gathered.points.size());
     for (size_t i = 0; i < plain.points.size(); ++i)
         EXPECT_EQ(std::memcmp(&plain.points[i], &gathered.points[i], sizeof(sh::GridPointSH)), 0) << "point " << i;
+}
+
+// Relighting without -sh leaves no SH grid of the earlier run behind, in lump 18 or as BSPX: the
+// file equals a fresh BSP lit without -sh.
+TEST(ShStage, RelightWithoutShDropsTheEarlierGrid) {
+    const std::filesystem::path dir = q3::test::tempDir();
+    auto light = [](const std::filesystem::path& path, bool sh, bool bspx) {
+        LightOptions options;
+        options.sh = sh;
+        options.shBspx = bspx;
+        lightRoom(path, options);
+    };
+    const std::filesystem::path fresh = writeRoom(dir / "fresh", {90, 90, 90});
+    light(fresh, false, false);
+    for (bool bspx : {false, true}) {
+        const std::filesystem::path relit = writeRoom(dir / (bspx ? "bspx" : "lump18"), {90, 90, 90});
+        light(relit, true, bspx);
+        const bsp::Bsp withSh = bsp::readBsp(relit);
+        ASSERT_EQ(withSh.shGrid.empty(), bspx);
+        ASSERT_EQ(withSh.findBspx(sh::kBspxLumpName) != nullptr, bspx);
+        light(relit, false, false);
+        bsp::Bsp without = bsp::readBsp(relit);
+        EXPECT_TRUE(without.shGrid.empty());
+        EXPECT_EQ(without.findBspx(sh::kBspxLumpName), nullptr);
+        EXPECT_EQ(without.version, bsp::kVersionQ3);
+        // The same file but for the command lines the entity lump records.
+        const bsp::Bsp freshBsp = bsp::readBsp(fresh);
+        without.entities = freshBsp.entities;
+        // writeRoom's header has 18 entries where -bsp writes 17; a version 46 file written after the
+        // SH grid left has the 17 of -bsp.
+        EXPECT_EQ(without.headerLumps, 17);
+        without.headerLumps = freshBsp.headerLumps;
+        EXPECT_EQ(bsp::serializeBsp(without), bsp::serializeBsp(freshBsp)) << (bspx ? "BSPX" : "lump 18");
+    }
 }
 
 TEST(ShGatherStage, ThreadCountDoesNotChangeOutput) {
