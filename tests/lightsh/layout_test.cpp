@@ -1,5 +1,5 @@
 // SetupGridSH: cell size from -gridsh, -gridscalesh and worldspawn gridsize, the 8-unit floor, the
-// bounds rule and the growth that keeps lump 18 within 1 GiB.
+// bounds rule and the growth that keeps lump 18 within its cap.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -103,7 +103,7 @@ TEST(ShGridLayout, EachAxisAtLeastEightWithWarning) {
 }
 
 TEST(ShGridLayout, GrowsPastOneGibWithWarningNamingTheSize) {
-    // A huge synthetic world: 8-unit cells would need far more than 1 GiB.
+    // A huge synthetic world: 8-unit cells would need far more than the cap.
     const Vec3 mins{-500000, -500000, -60000}, maxs{500000, 500000, 60000};
     auto ctx = contextWithWorld(mins, maxs);
     ctx->options.gridSizeSH[0] = ctx->options.gridSizeSH[1] = ctx->options.gridSizeSH[2] = 8;

@@ -1,5 +1,5 @@
 // The SH light grid of `-light -sh` (specs/sh-grid.md): its layout (cell size from -gridsh, or the
-// worldspawn "gridsize" divided by -gridscalesh; bounds of model 0; growth past the 1 GiB lump
+// worldspawn "gridsize" divided by -gridscalesh; bounds of model 0; growth past the 256 MiB lump
 // limit), its trace (every light the legacy grid sees, projected as L2 irradiance from its true
 // directions; close area lights integrated over their surface; ambient and minlight floors on the uniform
 // band; points in solid nudged out or filled from their neighbours) and how it is stored in a BSP
@@ -29,14 +29,16 @@ struct Light;
 struct LightingEnv;
 
 constexpr float kMinShCellSize = 8.0f;                          // smallest SH cell axis, also the growth step
-constexpr uint64_t kMaxShLumpBytes = uint64_t{1} << 30;         // 1 GiB
+// Largest SH lump: engines read the whole BSP into their hunk (ioquake3 loads oacmpdm9 with a 242 MB
+// SH grid and refuses oacmpctf3 with 588 MB), so a larger grid would make the map unplayable.
+constexpr uint64_t kMaxShLumpBytes = uint64_t{1} << 28;  // 256 MiB
 
 struct ShGridLayout {
     Vec3 requestedSize;            // from -gridsh or gridsize / -gridscalesh, before the clamp
     Vec3 size;                     // final cell size
     Vec3 mins;                     // world position of point (0,0,0)
     std::array<int, 3> bounds{};   // points per axis, each >= 1
-    int growSteps = 0;             // times every axis grew by kMinShCellSize to fit 1 GiB
+    int growSteps = 0;             // times every axis grew by kMinShCellSize to fit kMaxShLumpBytes
     bool clamped = false;          // an axis was raised to kMinShCellSize
 
     uint64_t numPoints() const {
@@ -59,7 +61,7 @@ ShGridLayout computeShGridLayout(Vec3 requestedSize, Vec3 worldMins, Vec3 worldM
 Vec3 requestedShCellSize(const LightContext& ctx);
 
 // SetupGridSH: layout from the options, worldspawn and model 0; warns when an axis is clamped to 8
-// and when the cell grows to fit 1 GiB (naming the final size).
+// and when the cell grows to fit kMaxShLumpBytes (naming the final size).
 ShGridLayout setupGridSH(const LightContext& ctx, Log& log);
 
 struct ShTraceStats {

@@ -84,7 +84,8 @@ ShGridLayout setupGridSH(const LightContext& ctx, Log& log) {
                            formatSize(vmax(requested, Vec3::splat(kMinShCellSize))), " (each axis at least ",
                            kMinShCellSize, " units)"));
     if (layout.growSteps > 0)
-        log.warning(strCat("SH grid cell size grown to ", formatSize(layout.size), " to keep lump 18 within 1 GiB (",
+        log.warning(strCat("SH grid cell size grown to ", formatSize(layout.size), " to keep lump 18 within ",
+                           kMaxShLumpBytes >> 20, " MiB (",
                            layout.numPoints(), " points)"));
     log.info(strCat("SH grid: cell ", formatSize(layout.size), ", ", layout.bounds[0], " x ", layout.bounds[1], " x ",
                     layout.bounds[2], " = ", layout.numPoints(), " points, ", layout.lumpBytes(), " bytes"));
