@@ -6,6 +6,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
+import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -127,3 +129,38 @@ def stage(fresh, dest, name):
         if os.path.exists(src):
             shutil.copyfile(src, os.path.join(dest, "maps", name + ext))
     return os.path.join(dest, "maps", name + ".bsp")
+
+
+def measure(cmd, cwd=None):
+    """Runs one command (in `cwd`); wall time from the clock, user time and peak RSS from wait4. A
+    failure ends the program with the end of its output."""
+    with tempfile.TemporaryFile() as output:
+        start = time.monotonic()
+        proc = subprocess.Popen(cmd, cwd=cwd, stdout=output, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.monotonic() - start
+        if os.waitstatus_to_exitcode(status) != 0:
+            output.seek(0)
+            tail = output.read()[-3000:].decode(errors="replace")
+            sys.exit("%s: %s failed:\n%s" % (os.path.basename(sys.argv[0]), " ".join(cmd), tail))
+    return {"wall": wall, "user": usage.ru_utime, "peak_rss_mb": usage.ru_maxrss / 1024.0}
+
+
+def shader_list_base(base, game, work):
+    """A base path holding <game>/scripts/shaderlist.txt naming every .shader of the game folder,
+    loose or in its pk3s, as the reference's wrapper writes it."""
+    names = set()
+    folder = os.path.join(base, game)
+    scripts = os.path.join(folder, "scripts")
+    if os.path.isdir(scripts):
+        names.update(f[:-7] for f in os.listdir(scripts) if f.endswith(".shader"))
+    for pk3 in sorted(f for f in os.listdir(folder) if f.endswith(".pk3")):
+        with zipfile.ZipFile(os.path.join(folder, pk3)) as z:
+            for entry in z.namelist():
+                if entry.startswith("scripts/") and entry.endswith(".shader") and entry.count("/") == 1:
+                    names.add(entry[len("scripts/"):-7])
+    listed = os.path.join(work, game, "scripts")
+    os.makedirs(listed)
+    with open(os.path.join(listed, "shaderlist.txt"), "w") as f:
+        f.write("".join(n + "\n" for n in sorted(names)))
+    return work

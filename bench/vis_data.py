@@ -7,9 +7,8 @@ import struct
 import subprocess
 import sys
 import tempfile
-import time
 
-from bench_data import ROOT, find_file, fresh_key, load_average
+from bench_data import ROOT, find_file, fresh_key, load_average, measure  # noqa: F401 (measure: vis-compare)
 
 PROG = os.path.basename(sys.argv[0])
 VISIBILITY = 16  # lump index of the PVS in an IBSP v46 file
@@ -49,19 +48,6 @@ def vis_inputs(reference, cache, name, threads):
     except OSError:
         shutil.rmtree(work)  # another run put its compile there first
     return bsp, prt
-
-
-def measure(cmd):
-    """Runs one -vis; wall time from the clock, user time and peak RSS from wait4."""
-    with tempfile.TemporaryFile() as output:
-        start = time.monotonic()
-        proc = subprocess.Popen(cmd, stdout=output, stderr=subprocess.STDOUT)
-        _, status, usage = os.wait4(proc.pid, 0)
-        wall = time.monotonic() - start
-        if os.waitstatus_to_exitcode(status) != 0:
-            output.seek(0)
-            sys.exit(PROG + ": %s failed:\n%s" % (" ".join(cmd), output.read()[-3000:].decode(errors="replace")))
-    return {"wall": wall, "user": usage.ru_utime, "peak_rss_mb": usage.ru_maxrss / 1024.0}
 
 
 def reference_vis(args, cache, name, options, bsp, prt, work):
