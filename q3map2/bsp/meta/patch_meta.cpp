@@ -17,7 +17,9 @@ const std::string* firstKey(const map::MapEntity& e, std::initializer_list<const
     return nullptr;
 }
 
-patch::ControlGrid controlGrid(const DrawSurface& ds) {
+}  // namespace
+
+patch::ControlGrid surfaceControlGrid(const DrawSurface& ds) {
     patch::ControlGrid grid;
     grid.width = ds.patchWidth;
     grid.height = ds.patchHeight;
@@ -35,6 +37,8 @@ patch::ControlGrid controlGrid(const DrawSurface& ds) {
     }
     return grid;
 }
+
+namespace {
 
 bsp::DrawVert drawVert(const patch::PatchVertex& p) {
     bsp::DrawVert v{};
@@ -60,7 +64,7 @@ DrawSurface patchMetaSurface(const DrawSurface& patchSurface, const map::MapEnti
         subdivisions = patchSubdivisions / (quality == 0 ? 1 : quality);
     }
     const patch::PatchMesh mesh =
-        patch::tessellateForLighting(controlGrid(patchSurface), patchSurface.longestCurve, subdivisions);
+        patch::tessellateForLighting(surfaceControlGrid(patchSurface), patchSurface.longestCurve, subdivisions);
 
     DrawSurface ds = patchSurface;
     ds.kind = SurfaceKind::Meta;

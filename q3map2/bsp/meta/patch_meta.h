@@ -6,12 +6,17 @@
 #pragma once
 
 #include "draw_surface.h"
+#include "patch.h"
 
 namespace q3::map {
 struct MapEntity;
 }
 
 namespace q3::bspstage::meta {
+
+// A patch surface's control points as a grid (position, normal, texture and lightmap coordinates,
+// colour).
+patch::ControlGrid surfaceControlGrid(const DrawSurface& patch);
 
 // The tessellated copy of a patch surface (kind Meta, same shader, fog and lighting keys).
 DrawSurface patchMetaSurface(const DrawSurface& patch, const map::MapEntity& entity, int patchSubdivisions);
