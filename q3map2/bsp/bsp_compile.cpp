@@ -20,6 +20,7 @@
 #include "script.h"
 #include "shader_info.h"
 #include "shaping/finish_surfaces.h"
+#include "shaping/foliage.h"
 #include "srf_writer.h"
 #include "structure_emit.h"
 #include "surface_filter.h"
@@ -42,6 +43,7 @@ struct ModelContext {
     std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
     LibcRandom& random;  // -maxarea retries, drawn in surface order
     const std::vector<DecalProjector>& decals;
+    const ModelInputs& models;  // misc_models, and the models q3map_foliage places
     Log& log;
     int mapSurfacesBefore = 0;  // draw surfaces of the models already written (q3map2 numbers them on)
 };
@@ -132,7 +134,13 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
         const bool isSkyCopy = surfaces[i].skyboxCopy;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
-        if (!isSkyCopy) applyTcMod(surfaces[i]);
+        if (!isSkyCopy) {
+            applyTcMod(surfaces[i]);
+            FoliageInputs foliage{c.models, c.in.map, c.random, entity.mapEntityNum};
+            std::vector<DrawSurface> scattered;
+            addFoliage(surfaces[i], foliage, scattered, c.log);
+            for (DrawSurface& f : scattered) surfaces.push_back(std::move(f));
+        }
         if (c.options.flares && !isSkyCopy)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
@@ -198,9 +206,9 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     LibcRandom random;
     const std::vector<DecalProjector> decals =
         makeDecalProjectors(map, in.shaders, options.meta.patchSubdivisions, log);
-    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, decals, log};
     const ModelInputs modelInputs{in.file, in.shaders, in.vfs, options.renameModelShaders,
                                   options.classify.maxSurfaceVerts, options.clip};
+    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, decals, modelInputs, log};
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];

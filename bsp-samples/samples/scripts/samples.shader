@@ -176,3 +176,9 @@ textures/samples/decal
 		alphaGen vertex
 	}
 }
+
+textures/samples/grass
+{
+	q3map_textureSize 64 64
+	q3map_foliage models/samples/post.md3 0.5 64 0.5 2
+}
