@@ -38,8 +38,6 @@ patch::ControlGrid surfaceControlGrid(const DrawSurface& ds) {
     return grid;
 }
 
-namespace {
-
 bsp::DrawVert drawVert(const patch::PatchVertex& p) {
     bsp::DrawVert v{};
     p.xyz.toArray(v.xyz);
@@ -52,7 +50,19 @@ bsp::DrawVert drawVert(const patch::PatchVertex& p) {
     return v;
 }
 
-}  // namespace
+patch::PatchMesh asPatchMesh(const std::vector<bsp::DrawVert>& verts, int width, int height) {
+    DrawSurface grid;
+    grid.patchWidth = width;
+    grid.patchHeight = height;
+    grid.verts = verts;
+    patch::ControlGrid g = surfaceControlGrid(grid);
+    patch::PatchMesh mesh;
+    mesh.width = width;
+    mesh.height = height;
+    mesh.verts = std::move(g.points);
+    patch::triangulateGrid(mesh);
+    return mesh;
+}
 
 DrawSurface patchMetaSurface(const DrawSurface& patchSurface, const map::MapEntity& entity, int patchSubdivisions) {
     int subdivisions;

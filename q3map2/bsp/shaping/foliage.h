@@ -1,5 +1,5 @@
 // q3map_foliage (q3map2 surface_foliage.cpp Foliage): every triangle of a triangle or meta surface
-// whose shader asks for foliage is halved along its longest edge until no edge is longer than the
+// (or of a patch, tessellated the older way: see foliage.cpp) whose shader asks for foliage is halved along its longest edge until no edge is longer than the
 // density; each piece facing upwards (plane normal z >= 0.5), with enough vertex alpha (average at
 // least 0.75, or inverted, or ignored) and a roll of the dice under odds x alpha, places one copy
 // of the model at its centre. The copies of one foliage directive are one Foliage surface: the
