@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds a real OpenArena map from its .map source through all three stages with this compiler
-# (-bsp, -vis, -light -fast -sh) in a work folder outside the clone, then looks at the result.
+# (-bsp -meta, -vis, -light -fast -sh) in a work folder outside the clone, then looks at the result.
 # Usage: tools/demo.sh [build-dir] [map-name]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,7 +23,7 @@ run() {
   "$q3map2" "$@"
   echo "   ($((SECONDS - start)) s)"
 }
-run $game -bsp "$work/$map.map"
+run $game -bsp -meta "$work/$map.map"
 run $game -vis "$work/$map.bsp"
 run $game -light -fast -sh "$work/$map.bsp"
 run -shprobe "$work/$map.bsp" 0 0 64

@@ -140,6 +140,16 @@ struct ShaderFloodLight {
     float directionScale = 0;
 };
 
+// q3map_foliage <model> <scale> <density> <odds> <inverseAlpha>: copies of a model scattered over
+// the surface's upward-facing triangles, one chance per piece no longer than `density`.
+struct ShaderFoliage {
+    std::string model;
+    float scale = 1;
+    float density = 0;   // longest edge of the pieces a triangle is cut into
+    float odds = 0;      // chance of a copy per piece, times the vertex alpha
+    int inverseAlpha = 0;  // 0: alpha as is, 1: inverted, 2: ignored
+};
+
 struct ShaderInfo {
     std::string name;            // as written in the script (or the texture name), no extension
     bool explicitScript = false; // false: implicit shader made up for a texture without a script
@@ -224,6 +234,7 @@ struct ShaderInfo {
     std::string backShader;             // q3map_backShader: a flipped copy with this shader
     std::string cloneShader;            // q3map_cloneShader: a copy with this shader
     std::string remapShader;            // q3map_remapShader: the BSP names this shader so instead
+    std::vector<ShaderFoliage> foliage;  // q3map_foliage, in script order
     // q3map_tcMod translate/scale/rotate, composed in script order: s' = m[0] . (s, t, 1),
     // t' = m[1] . (s, t, 1); the identity when the shader has none.
     std::array<std::array<float, 3>, 3> tcMod{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};

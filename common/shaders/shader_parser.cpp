@@ -15,8 +15,8 @@ namespace {
 // q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 15> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel", "q3map_foliage",
+constexpr std::array<std::string_view, 14> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel",
     "q3map_fur",          "q3map_colorGen",    "q3map_colorMod",     "q3map_rgbGen",        "q3map_rgbMod",
     "q3map_alphaGen",     "q3map_alphaMod",    "q3map_indexed",      "q3map_patchShadows",
     "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
@@ -363,6 +363,13 @@ private:
             shader.cloneShader = argToken(shader, token);
         } else if (is("q3map_remapShader")) {
             shader.remapShader = argToken(shader, token);
+        } else if (is("q3map_foliage")) {
+            ShaderFoliage& f = shader.foliage.emplace_back();
+            f.model = argToken(shader, token);
+            f.scale = argFloat(shader, token);
+            f.density = argFloat(shader, token);
+            f.odds = argFloat(shader, token);
+            f.inverseAlpha = argInt(shader, token);
         } else if (is("q3map_tcMod")) {
             parseTcMod(shader, token);
         } else if (is("q3map_tcGen")) {

@@ -123,7 +123,8 @@ void checkSurfaces(const Checker& c) {
         // Old compilers wrote fogNum 0 into maps without any fog; engines never look it up then.
         const bool unusedFog = b.fogs.empty() && s.fogNum == 0;
         if (s.fogNum != -1 && !unusedFog) c.index(LUMP_SURFACES, i, "fogNum", s.fogNum, b.fogs.size(), "fogs");
-        if (s.surfaceType < MST_BAD || s.surfaceType > MST_FLARE)
+        // MST_FOLIAGE: q3map2's q3map_foliage surfaces (instanced by Wolfenstein: ET-style engines).
+        if (s.surfaceType < MST_BAD || s.surfaceType > MST_FOLIAGE)
             c.fail(LUMP_SURFACES, i, "unknown surfaceType " + std::to_string(s.surfaceType));
         c.range(LUMP_SURFACES, i, "vertex", s.firstVert, s.numVerts, b.drawVerts.size(), "drawverts");
         c.range(LUMP_SURFACES, i, "index", s.firstIndex, s.numIndexes, b.drawIndexes.size(), "drawindexes");
@@ -133,13 +134,20 @@ void checkSurfaces(const Checker& c) {
                 c.fail(LUMP_SURFACES, i, "index " + std::to_string(s.firstIndex + k) + " = " + std::to_string(v) +
                                              " is outside the surface's " + std::to_string(s.numVerts) + " vertices");
         }
-        if ((s.surfaceType == MST_PLANAR || s.surfaceType == MST_TRIANGLE_SOUP) && s.numIndexes % 3 != 0)
+        if ((s.surfaceType == MST_PLANAR || s.surfaceType == MST_TRIANGLE_SOUP || s.surfaceType == MST_FOLIAGE) &&
+            s.numIndexes % 3 != 0)
             c.fail(LUMP_SURFACES, i, std::to_string(s.numIndexes) + " indexes do not make whole triangles");
         if (s.surfaceType == MST_PATCH &&
             (s.patchWidth <= 0 || s.patchHeight <= 0 ||
              static_cast<int64_t>(s.patchWidth) * s.patchHeight != s.numVerts))
             c.fail(LUMP_SURFACES, i, "patch size " + std::to_string(s.patchWidth) + "x" +
                                          std::to_string(s.patchHeight) + " does not match its " +
+                                         std::to_string(s.numVerts) + " vertices");
+        // The model's vertices (patchHeight of them) come first, then one per copy (patchWidth).
+        if (s.surfaceType == MST_FOLIAGE &&
+            (s.patchWidth < 0 || s.patchHeight < 0 || int64_t(s.patchWidth) + s.patchHeight != s.numVerts))
+            c.fail(LUMP_SURFACES, i, "foliage of " + std::to_string(s.patchWidth) + " copies of " +
+                                         std::to_string(s.patchHeight) + " vertices does not match its " +
                                          std::to_string(s.numVerts) + " vertices");
     }
 }

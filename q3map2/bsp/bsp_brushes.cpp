@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "decals/decals.h"
 #include "feedback_log.h"
 #include "log.h"
 #include "model_numbers.h"
@@ -198,7 +199,7 @@ void setBrushContents(Brush& b, bool fullDetail, Log& log) {
 }
 
 LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, const MapLoadOptions& options, Log& log) {
-    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}, {}, options.flagRules};
+    LoadedMap out{PlaneSet(options.epsilons), {}, {}, {}, {}, options.flagRules, {}};
     for (const map::MapEntity& source : map.entities) {
         BspEntity ent;
         ent.source = &source;
@@ -295,6 +296,7 @@ LoadedMap loadMapForBsp(const map::MapFile& map, const ShaderTable& shaders, con
         if (b.detail) ++out.counts.detailBrushes;
         out.worldBounds.add(b.bounds);
     }
+    if (options.decals) collectDecalEntities(out, map, log);
     numberModels(out, options.resolveClones, log);
     for (const BspEntity& e : out.entities) out.counts.patches += int(e.patches.size());
     return out;

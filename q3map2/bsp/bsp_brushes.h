@@ -73,6 +73,16 @@ struct BspEntity {
     bool isPointEntity() const;
 };
 
+// A _decal entity (q3map2 ProcessDecals): its patches are decal projectors, not geometry, so they
+// leave the entity (which then makes no model) once the entity its "target" names is found.
+struct DecalEntity {
+    int mapEntityNum = 0;
+    DVec3 origin;                   // the decal entity's "origin" key
+    DVec3 target;                   // the origin of the entity its "target" names
+    DBounds bounds;                 // of all the entity's brushes and patch control points
+    std::vector<PatchRef> patches;  // in the entity's list order (latest first)
+};
+
 struct MapLoadOptions {
     PlaneEpsilons epsilons;
     bool noDetail = false;    // -nodetail
@@ -86,6 +96,7 @@ struct MapLoadOptions {
     // world's brush numbers are the editor's, and brushes get no bevels.
     bool keepGroups = false;
     bool resolveClones = true;  // off for -onlyents, which numbers clones like other models
+    bool decals = true;         // off for -onlyents: only a full -bsp turns _decal patches into projectors
     FeedbackStream* feedback = nullptr;  // -connect: problem brushes go to the editor as selections
 };
 
@@ -107,6 +118,7 @@ struct LoadedMap {
     // spelling; the shader table keys them in lower case).
     std::map<const ShaderInfo*, std::string> implicitShaderNames;
     ShaderFlagRules flagRules;
+    std::vector<DecalEntity> decals;  // _decal entities with a target, their patches moved here
 
     // The name a shader is written under.
     const std::string& shaderName(const ShaderInfo& shader) const;

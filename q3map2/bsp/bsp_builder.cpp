@@ -194,6 +194,12 @@ int BspBuilder::emitSurface(DrawSurface& ds, const SurfaceEmitOptions& options, 
                           ds.kind == SurfaceKind::Foghull || int(ds.verts.size()) > options.maxLightmappedVerts ||
                           options.debugSurfaces;
         s.surfaceType = soup ? bsp::MST_TRIANGLE_SOUP : bsp::MST_PLANAR;
+        if (ds.kind == SurfaceKind::Foliage) {
+            // Instanced by the engine: the copy count and the model's vertex count.
+            s.surfaceType = bsp::MST_FOLIAGE;
+            s.patchWidth = ds.patchWidth;
+            s.patchHeight = ds.patchHeight;
+        }
         if (options.debugInset) insetTriangles(ds);
         if (ds.indexes.size() > 16 && !si.autosprite) optimizeForVertexCache(ds.indexes);
     }

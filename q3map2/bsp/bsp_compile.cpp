@@ -8,6 +8,7 @@
 #include "brush_filter.h"
 #include "count_line.h"
 #include "debug_portals.h"
+#include "decals/decals.h"
 #include "face_subdivide.h"
 #include "fog_hull.h"
 #include "fog_volumes.h"
@@ -19,6 +20,7 @@
 #include "script.h"
 #include "shader_info.h"
 #include "shaping/finish_surfaces.h"
+#include "shaping/foliage.h"
 #include "srf_writer.h"
 #include "structure_emit.h"
 #include "surface_filter.h"
@@ -40,6 +42,8 @@ struct ModelContext {
     std::vector<int>& brushOutputs;
     std::vector<std::unique_ptr<DrawSurface>>& written;  // every written surface, in BSP order
     LibcRandom& random;  // -maxarea retries, drawn in surface order
+    const std::vector<DecalProjector>& decals;
+    const ModelInputs& models;  // misc_models, and the models q3map_foliage places
     Log& log;
     int mapSurfacesBefore = 0;  // draw surfaces of the models already written (q3map2 numbers them on)
 };
@@ -98,6 +102,12 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     finishSurfaces(surfaces, {c.in.file, c.in.shaders, c.options.celShader, c.options.maxDrawSurfaces});
     for (DrawSurface& ds : surfaces) classifySurface(ds, c.in.map.planes, c.options.classify);
     c.log.debug(countLine(tidySurfaces(surfaces), "empty or malformed surfaces deleted"));
+    if (!c.decals.empty()) {
+        c.log.debug("--- MakeEntityDecals ---");
+        const int made = makeEntityDecals({c.decals, c.in.map.planes, entity.origin, c.options.meta.patchSubdivisions},
+                                          surfaces);
+        c.log.debug(countLine(made, "decal surfaces"));
+    }
     makeMeta(c, entity, surfaces);
     if (c.options.debugPortals && entityIndex == 0) {
         c.log.debug("--- MakeDebugPortalSurfs ---");
@@ -124,7 +134,13 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
         const bool isSkyCopy = surfaces[i].skyboxCopy;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
-        if (!isSkyCopy) applyTcMod(surfaces[i]);
+        if (!isSkyCopy) {
+            applyTcMod(surfaces[i]);
+            FoliageInputs foliage{c.models, c.in.map, c.random, entity.mapEntityNum};
+            std::vector<DrawSurface> scattered;
+            addFoliage(surfaces[i], foliage, scattered, c.log);
+            for (DrawSurface& f : scattered) surfaces.push_back(std::move(f));
+        }
         if (c.options.flares && !isSkyCopy)
             if (std::optional<DrawSurface> f = surfaceFlare(surfaces[i], entity.origin, c.in.shaders,
                                                             c.in.flareColors ? *c.in.flareColors : noColors))
@@ -144,7 +160,7 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
         int refs = isSkyCopy ? addSkyboxReferences(ds, tree, c.builder.nextSurface()) : 0;
         if (refs == 0) refs = shaderOnly ? 1 : filterSurfaceIntoTree(ds, tree, c.in.map.planes, c.builder.nextSurface());
         if (refs == 0) continue;
-        if (ds.kind == SurfaceKind::Face) {
+        if (ds.kind == SurfaceKind::Face || ds.kind == SurfaceKind::Decal) {
             if (c.options.maxArea)
                 triangulateFaceByMaxArea(ds, c.random, &triangles);
             else
@@ -188,9 +204,11 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     }
     std::vector<int> brushOutputs(map.entities.size(), -1);
     LibcRandom random;
-    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, log};
+    const std::vector<DecalProjector> decals =
+        makeDecalProjectors(map, in.shaders, options.meta.patchSubdivisions, log);
     const ModelInputs modelInputs{in.file, in.shaders, in.vfs, options.renameModelShaders,
                                   options.classify.maxSurfaceVerts, options.clip};
+    ModelContext c{in, options, faces, params, fogs, builder, brushOutputs, written, random, decals, modelInputs, log};
 
     for (size_t i = 0; i < map.entities.size(); ++i) {
         BspEntity& e = map.entities[i];

@@ -110,6 +110,7 @@ void replaceEntities(const fs::path& bspPath, const map::MapFile& file, const Sh
     MapLoadOptions load;
     load.epsilons = {options.normalEpsilon, options.distanceEpsilon};
     load.resolveClones = false;
+    load.decals = false;
     const LoadedMap map = loadMapForBsp(file, shaders, load, log);
     EntityLumpOptions entityOptions;
     entityOptions.keepLights = options.keepLights;

@@ -5,37 +5,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "float_plane.h"
 #include "shader_info.h"
 
 namespace q3::bspstage {
 namespace {
 
-// Planes in floats, as q3map2's Plane3f.
-struct FPlane {
-    Vec3 normal;
-    float dist = 0;
-};
-
 using Triangle = std::array<Vec3, 3>;
 
-// q3map2's VectorNormalize: the length and the division in doubles.
-Vec3 normalized(const Vec3& v, double* lengthOut = nullptr) {
-    const double x = v.x, y = v.y, z = v.z, len = std::sqrt(x * x + y * y + z * z);
-    if (lengthOut) *lengthOut = len;
-    if (len == 0) return {0, 0, 0};
-    return {float(x / len), float(y / len), float(z / len)};
-}
-
-bool planeFromPoints(FPlane& plane, const Triangle& p) {
-    double len = 0;
-    plane.normal = normalized(cross(p[2] - p[0], p[1] - p[0]), &len);
-    if (len == 0) {
-        plane.dist = 0;
-        return false;
-    }
-    plane.dist = dot(p[0], plane.normal);
-    return true;
-}
+bool planeFromPoints(FPlane& plane, const Triangle& p) { return floatPlaneFromPoints(plane, p[0], p[1], p[2]); }
 
 Vec3 centre(const Triangle& p) {
     const Vec3 sum = p[0] + p[1] + p[2];
@@ -88,7 +66,7 @@ bool snappedPlane(FPlane& plane, Triangle& p) {
     for (int j = 0; j < 3; ++j) {
         Vec3& a = p[size_t(j)];
         Vec3& b = p[size_t((j + 1) % 3)];
-        const Vec3 edge = normalized(a - b);
+        const Vec3 edge = normalizedLikeQ3map2(a - b);
         for (int k = 0; k < 3; ++k)
             if (edge[k] != 0 && std::fabs(edge[k]) < 0.00025) {
                 a[k] = b[k] = float(double(a[k] + b[k]) / 2.0);
@@ -105,7 +83,7 @@ bool snappedPlane(FPlane& plane, Triangle& p) {
         }
     if (snapped) {
         const Vec3 c = centre(p);
-        plane.normal = normalized(plane.normal);
+        plane.normal = normalizedLikeQ3map2(plane.normal);
         plane.dist = dot(plane.normal, c);
         for (Vec3& q : p) q = q - plane.normal * (dot(plane.normal, q) - plane.dist);
     }
@@ -150,7 +128,7 @@ ClipBrushes clipBrushesForSurface(const DrawSurface& ds, const ShaderInfo& shade
         axis[a] = plane.normal[a] >= 0 ? 1.0f : -1.0f;
         FPlane edges[3];
         for (int j = 0; j < 3; ++j) {
-            edges[j].normal = normalized(cross(axis, p[size_t((j + 1) % 3)] - p[size_t(j)]));
+            edges[j].normal = normalizedLikeQ3map2(cross(axis, p[size_t((j + 1) % 3)] - p[size_t(j)]));
             edges[j].dist = dot(p[size_t(j)], edges[j].normal);
         }
         FPlane back{-plane.normal, -plane.dist};

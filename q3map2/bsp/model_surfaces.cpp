@@ -159,7 +159,51 @@ void setColor(bsp::DrawVert& dv, const float (&color)[4], bool colorToAlpha) {
     }
 }
 
+// A model surface as a triangle surface under `shader`, its vertices moved by `transform`.
+DrawSurface triangleSurface(const model::Surface& surface, const ShaderInfo& shader, const std::string& shaderName,
+                            const ModelTransform& transform, bool colorToAlpha, LoadedMap& map) {
+    // q3map2 names a shader without a script as the model spells it, less the extension.
+    if (!shader.explicitScript)
+        map.implicitShaderNames.try_emplace(&shader, shaderName.substr(0, shaderKey(shaderName).size()));
+    DrawSurface ds;
+    ds.kind = SurfaceKind::Triangles;
+    ds.shader = &shader;
+    for (const model::Vertex& v : surface.verts) {
+        bsp::DrawVert dv{};
+        transform.point(v.xyz).toArray(dv.xyz);
+        normalizedInDoubles(transform.normal(v.normal)).toArray(dv.normal);
+        if (shader.tcGen) {
+            const Vec3 p = xyzOf(dv);
+            dv.st[0] = dot(shader.tcGenVectors[0], p);
+            dv.st[1] = dot(shader.tcGenVectors[1], p);
+        } else {
+            dv.st[0] = v.st[0];
+            dv.st[1] = v.st[1];
+        }
+        setColor(dv, v.color, colorToAlpha);
+        ds.verts.push_back(dv);
+    }
+    ds.indexes = surface.indexes;
+    if (transform.leftHanded())
+        for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i + 1], ds.indexes[i + 2]);
+    return ds;
+}
+
 }  // namespace
+
+std::vector<DrawSurface> scaledModelSurfaces(const std::string& modelName, float scale, const ModelInputs& inputs,
+                                             LoadedMap& map, const std::string& who, Log& log) {
+    ModelCache cache;
+    std::vector<DrawSurface> out;
+    const std::vector<model::Surface>* surfaces = cache.get(modelName, 0, inputs, who, log);
+    if (!surfaces) return out;
+    const ModelTransform transform = ModelTransform::place({0, 0, 0}, 0, 0, 0, Vec3::splat(scale));
+    for (const model::Surface& surface : *surfaces) {
+        const ShaderInfo& shader = inputs.shaders.find(surface.shader);
+        out.push_back(triangleSurface(surface, shader, surface.shader, transform, false, map));
+    }
+    return out;
+}
 
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
                       std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log) {
@@ -214,33 +258,10 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
                             " forces meta surfaces, which this build does not make; model surface skipped");
                 continue;
             }
-            // q3map2 names a shader without a script as the model spells it, less the extension.
-            if (!shader.explicitScript)
-                map.implicitShaderNames.try_emplace(&shader, shaderName.substr(0, shaderKey(shaderName).size()));
-            DrawSurface ds;
-            ds.kind = SurfaceKind::Triangles;
-            ds.shader = &shader;
+            DrawSurface ds = triangleSurface(surface, shader, shaderName, transform, spawnFlags & kColorToAlpha, map);
             ds.mapEntityNum = parent.mapEntityNum;
             ds.castShadows = cast;
             ds.receiveShadows = receive;
-            for (const model::Vertex& v : surface.verts) {
-                bsp::DrawVert dv{};
-                transform.point(v.xyz).toArray(dv.xyz);
-                normalizedInDoubles(transform.normal(v.normal)).toArray(dv.normal);
-                if (shader.tcGen) {
-                    const Vec3 p = xyzOf(dv);
-                    dv.st[0] = dot(shader.tcGenVectors[0], p);
-                    dv.st[1] = dot(shader.tcGenVectors[1], p);
-                } else {
-                    dv.st[0] = v.st[0];
-                    dv.st[1] = v.st[1];
-                }
-                setColor(dv, v.color, spawnFlags & kColorToAlpha);
-                ds.verts.push_back(dv);
-            }
-            ds.indexes = surface.indexes;
-            if (transform.leftHanded())
-                for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) std::swap(ds.indexes[i + 1], ds.indexes[i + 2]);
             if (wantsDefaultClip(spawnFlags, shader)) {
                 const ShaderInfo* debugShaders[2] = {nullptr, nullptr};
                 if (inputs.clip.debugClip)

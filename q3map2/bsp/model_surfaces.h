@@ -37,4 +37,10 @@ struct ModelInputs {
 void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, const ModelInputs& inputs,
                       std::vector<DrawSurface>& out, std::vector<Brush>& clipBrushes, Log& log);
 
+// The surfaces of one model file, scaled about its origin, under the shaders its surfaces name
+// (q3map2 InsertModel without remaps, skin or clip brushes): what q3map_foliage places. Empty, with
+// a warning naming `who`, when the model cannot be loaded.
+std::vector<DrawSurface> scaledModelSurfaces(const std::string& modelName, float scale, const ModelInputs& inputs,
+                                             LoadedMap& map, const std::string& who, Log& log);
+
 }  // namespace q3::bspstage

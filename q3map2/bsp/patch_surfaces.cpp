@@ -35,8 +35,9 @@ float spanLength(Vec3 a, Vec3 b, Vec3 c) {
     return len;
 }
 
-// The longest span along the first row and first column of each 3x3 sub-patch.
-float longestCurveOf(const map::MapPatch& p) {
+}  // namespace
+
+float patchLongestCurve(const map::MapPatch& p) {
     float longest = 0;
     for (int x = 0; x + 2 < p.width; x += 2)
         for (int y = 0; y + 2 < p.height; y += 2) {
@@ -46,19 +47,19 @@ float longestCurveOf(const map::MapPatch& p) {
     return longest;
 }
 
-patch::ControlGrid gridOf(const map::MapPatch& p) {
+patch::ControlGrid patchControlGrid(const map::MapPatch& p) {
     patch::ControlGrid g;
     g.width = p.width;
     g.height = p.height;
     for (const map::PatchControl& c : p.control) {
         patch::PatchVertex v;
         v.xyz = c.xyz;
+        v.st[0] = c.st[0];
+        v.st[1] = c.st[1];
         g.points.push_back(v);
     }
     return g;
 }
-
-}  // namespace
 
 void makeGridNormals(std::vector<bsp::DrawVert>& verts, int width, int height) {
     static constexpr int kNeighbours[8][2] = {{0, 1}, {1, 1}, {1, 0}, {1, -1}, {0, -1}, {-1, -1}, {-1, 0}, {-1, 1}};
@@ -147,7 +148,7 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
         kept.push_back(&ref);
     }
     std::vector<patch::ControlGrid> grids;
-    for (const PatchRef* ref : kept) grids.push_back(gridOf(*ref->patch));
+    for (const PatchRef* ref : kept) grids.push_back(patchControlGrid(*ref->patch));
     // Patches sharing a control point pick their level of detail together: every member gets the
     // group's control point bounds and longest curve.
     const std::vector<int> groups = patch::patchLodGroups(grids);
@@ -160,7 +161,7 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
             groupCurve.resize(g + 1, 0.0f);
         }
         for (const map::PatchControl& c : kept[i]->patch->control) groupBounds[g].add(DVec3(c.xyz));
-        groupCurve[g] = std::max(groupCurve[g], longestCurveOf(*kept[i]->patch));
+        groupCurve[g] = std::max(groupCurve[g], patchLongestCurve(*kept[i]->patch));
     }
 
     std::vector<DrawSurface> out;

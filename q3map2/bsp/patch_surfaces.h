@@ -7,6 +7,7 @@
 
 #include "bsp_brushes.h"
 #include "draw_surface.h"
+#include "patch.h"
 
 namespace q3 {
 class Log;
@@ -24,6 +25,12 @@ void putGridOnCurve(std::vector<bsp::DrawVert>& verts, int width, int height);
 
 // True when every control point lies on one line through the first (q3map2 drops such patches).
 bool isDegeneratePatch(const map::MapPatch& patch);
+
+// The longest span along the first row and first column of each 3x3 sub-patch (q3map2's per-patch
+// longestCurve, before level-of-detail groups share theirs).
+float patchLongestCurve(const map::MapPatch& patch);
+// The control points with their texture coordinates, white, without normals.
+patch::ControlGrid patchControlGrid(const map::MapPatch& patch);
 
 struct PatchCounts {
     int patches = 0;

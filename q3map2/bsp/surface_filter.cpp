@@ -145,6 +145,21 @@ int filterSurfaceIntoTree(DrawSurface& ds, Tree& tree, const PlaneSet& planes, i
             for (const bsp::DrawVert& v : ds.verts) refs += f.point(pointOf(v), tree.head);
             return refs;
         }
+        case SurfaceKind::Foliage: {
+            // Every copy: the model's triangles and vertices moved to the copy's place.
+            int refs = 0;
+            const size_t modelVerts = size_t(ds.patchHeight);
+            for (size_t c = modelVerts; c < ds.verts.size(); ++c) {
+                const Vec3 at = xyzOf(ds.verts[c]);
+                auto moved = [&](size_t v) { return DVec3(at + xyzOf(ds.verts[v])); };  // summed in floats
+                for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) {
+                    Winding w{moved(size_t(ds.indexes[i])), moved(size_t(ds.indexes[i + 1])), moved(size_t(ds.indexes[i + 2]))};
+                    refs += f.winding(w, tree.head);
+                }
+                for (size_t v = 0; v < modelVerts; ++v) refs += f.point(moved(v), tree.head);
+            }
+            return refs;
+        }
         case SurfaceKind::Flare:
             return f.point(DVec3(ds.flareOrigin), tree.head);
         case SurfaceKind::Foghull:

@@ -63,12 +63,13 @@ std::string legacyGridSection(const bsp::Bsp& bsp, const std::vector<bsp::Entity
 
 std::string formatBspInfo(const bsp::Bsp& bsp, const std::string& name, uintmax_t fileSize) {
     std::vector<bsp::Entity> entities = bsp::parseEntities(bsp.entities, name);
-    size_t patches = 0, planar = 0, trisoup = 0, flares = 0;
+    size_t patches = 0, planar = 0, trisoup = 0, flares = 0, foliage = 0;
     for (const bsp::Surface& s : bsp.surfaces) {
         patches += s.surfaceType == bsp::MST_PATCH;
         planar += s.surfaceType == bsp::MST_PLANAR;
         trisoup += s.surfaceType == bsp::MST_TRIANGLE_SOUP;
         flares += s.surfaceType == bsp::MST_FLARE;
+        foliage += s.surfaceType == bsp::MST_FOLIAGE;
     }
 
     std::string out = "---------------------------------\n" + name + "\n";
@@ -94,6 +95,7 @@ std::string formatBspInfo(const bsp::Bsp& bsp, const std::string& name, uintmax_
     out += printf9("%9zu   planar surfaces\n", planar);
     out += printf9("%9zu   trisoup surfaces\n", trisoup);
     if (flares) out += printf9("%9zu   flare surfaces\n", flares);
+    if (foliage) out += printf9("%9zu   foliage surfaces\n", foliage);
     out += recordLine("drawverts", bsp.drawVerts, true);
     out += recordLine("drawindexes", bsp.drawIndexes);
     out += "\n";

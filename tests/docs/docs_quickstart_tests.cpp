@@ -40,6 +40,14 @@ int32_t readInt(const std::string& bytes, size_t offset) {
     return value;
 }
 
+// How many surfaces of a kind the .srf beside a BSP lists ("12 // ESurfaceType::Meta V: ...").
+int srfSurfacesOfKind(const std::string& srf, const std::string& kind) {
+    int count = 0;
+    const std::string marker = "// ESurfaceType::" + kind + " ";
+    for (size_t at = srf.find(marker); at != std::string::npos; at = srf.find(marker, at + 1)) ++count;
+    return count;
+}
+
 TEST(DocsBlocks, FindsMarkedBlocksOnly) {
     const std::string text = "# Title\n```sh\nnot marked\n```\n"
                              "<!-- quick-start creates: a.bsp out/b.png -->\n```sh\n# comment\ncmd one  # why\n\n"
@@ -74,8 +82,9 @@ TEST(DocsQuickStart, ReadmeAndUserGuideShowTheSameQuickStart) {
     QuickStartBlock guide = onlyBlockOf("docs/user-guide.md");
     EXPECT_EQ(readme.script, guide.script);
     EXPECT_EQ(readme.creates, guide.creates);
-    // It relights with the SH grid and then looks at the result.
+    // It compiles with meta surfaces, relights with the SH grid and then looks at the result.
     std::string script = readme.script;
+    EXPECT_NE(script.find(" -bsp -meta "), std::string::npos);
     EXPECT_NE(script.find(" -light "), std::string::npos);
     EXPECT_NE(script.find(" -sh "), std::string::npos);
     EXPECT_NE(script.find(" -shprobe "), std::string::npos);
@@ -113,6 +122,14 @@ TEST(DocsQuickStart, RelightsARealMapWithTheShGridAndLeavesWhatItPromises) {
             EXPECT_EQ(bytes.substr(0, 4), "IBSP") << file;
             EXPECT_EQ(readInt(bytes, 4), 47) << file << ": -sh makes a version 47 BSP";
             EXPECT_GT(readInt(bytes, 8 + 18 * 8 + 4), 0) << file << ": lump 18 (the SH grid) is empty";
+            // -bsp -meta merged the brush faces into meta surfaces (plain -bsp leaves none); the
+            // few faces left are the ones meta never takes (autosprite shaders).
+            const fs::path srfPath = (dir / file).replace_extension(".srf");
+            ASSERT_TRUE(fs::exists(srfPath)) << srfPath;
+            const std::string srf = readText(srfPath);
+            const int meta = srfSurfacesOfKind(srf, "Meta"), faces = srfSurfacesOfKind(srf, "Face");
+            EXPECT_GT(meta, 1000) << srfPath << ": too few meta surfaces for a -bsp -meta compile";
+            EXPECT_LT(faces * 100, meta) << srfPath << ": brush faces left out of meta surfaces";
         }
     }
     // Piped output gets q3map2's pacifier, and the run ends with each phase's time.

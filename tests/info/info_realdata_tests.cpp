@@ -171,6 +171,17 @@ TEST(InfoShGrid, StatisticsOfLump18AndOfTheBspxLump) {
     EXPECT_NE(bspxRun.out.find("SH grid (BSPX LIGHTGRID_SH):"), std::string::npos);
 }
 
+// q3map_foliage surfaces (MST_FOLIAGE) are read and counted beside the other surface types.
+TEST(InfoSurfaces, FoliageSurfacesAreCounted) {
+    const std::filesystem::path dir = tempDir();
+    const std::filesystem::path golden = std::filesystem::path(Q3MAP_SOURCE_DIR) / "bsp-samples/golden/foliage.bsp";
+    std::filesystem::copy_file(golden, dir / "foliage.bsp");
+    RunResult run = runQ3map2({"-info", (dir / "foliage.bsp").string()}, dir);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("        2   foliage surfaces\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("        1   patch surfaces\n"), std::string::npos) << run.out;
+}
+
 TEST(InfoCommandLine, MapPathWithoutExtensionOrAsMap) {
     const std::filesystem::path dir = tempDir();
     writeBytes(dir / "small.bsp", smallestRealMap());

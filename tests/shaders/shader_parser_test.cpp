@@ -356,6 +356,25 @@ TEST(ShaderParser, TcModComposesInScriptOrderAndRemapKeepsItsTarget) {
     EXPECT_NE(cap.all().find("unknown q3map_tcMod method 'wobble'"), std::string::npos) << cap.all();
 }
 
+// q3map_foliage may appear several times; each keeps its model, scale, density, odds and alpha mode.
+TEST(ShaderParser, FoliageDirectivesInScriptOrder) {
+    const ShaderInfo si = parseOne(R"(x
+{
+    q3map_foliage models/mapobjects/grass.md3 0.75 32 0.1 1
+    q3map_foliage models/mapobjects/rock.md3 2 128 0.02 2
+}
+)");
+    ASSERT_EQ(si.foliage.size(), 2u);
+    EXPECT_EQ(si.foliage[0].model, "models/mapobjects/grass.md3");
+    EXPECT_FLOAT_EQ(si.foliage[0].scale, 0.75f);
+    EXPECT_FLOAT_EQ(si.foliage[0].density, 32);
+    EXPECT_FLOAT_EQ(si.foliage[0].odds, 0.1f);
+    EXPECT_EQ(si.foliage[0].inverseAlpha, 1);
+    EXPECT_EQ(si.foliage[1].model, "models/mapobjects/rock.md3");
+    EXPECT_EQ(si.foliage[1].inverseAlpha, 2);
+    EXPECT_TRUE(parseOne("y\n{\n}\n").foliage.empty());
+}
+
 TEST(ShaderParser, BaseShaderInheritsEarlierDefinition) {
     CapturedLog cap;
     auto shaders = parse(R"(base/light

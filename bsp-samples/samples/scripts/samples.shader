@@ -162,3 +162,23 @@ textures/samples/cel
 	q3map_textureSize 32 32
 	surfaceparm nolightmap
 }
+
+textures/samples/decal
+{
+	q3map_textureSize 64 64
+	surfaceparm nonsolid
+	surfaceparm trans
+	surfaceparm nomarks
+	polygonOffset
+	{
+		map textures/samples/decal.tga
+		blendFunc GL_DST_COLOR GL_ZERO
+		alphaGen vertex
+	}
+}
+
+textures/samples/grass
+{
+	q3map_textureSize 64 64
+	q3map_foliage models/samples/post.md3 0.5 64 0.5 2
+}

@@ -17,7 +17,9 @@ const std::string* firstKey(const map::MapEntity& e, std::initializer_list<const
     return nullptr;
 }
 
-patch::ControlGrid controlGrid(const DrawSurface& ds) {
+}  // namespace
+
+patch::ControlGrid surfaceControlGrid(const DrawSurface& ds) {
     patch::ControlGrid grid;
     grid.width = ds.patchWidth;
     grid.height = ds.patchHeight;
@@ -48,7 +50,19 @@ bsp::DrawVert drawVert(const patch::PatchVertex& p) {
     return v;
 }
 
-}  // namespace
+patch::PatchMesh asPatchMesh(const std::vector<bsp::DrawVert>& verts, int width, int height) {
+    DrawSurface grid;
+    grid.patchWidth = width;
+    grid.patchHeight = height;
+    grid.verts = verts;
+    patch::ControlGrid g = surfaceControlGrid(grid);
+    patch::PatchMesh mesh;
+    mesh.width = width;
+    mesh.height = height;
+    mesh.verts = std::move(g.points);
+    patch::triangulateGrid(mesh);
+    return mesh;
+}
 
 DrawSurface patchMetaSurface(const DrawSurface& patchSurface, const map::MapEntity& entity, int patchSubdivisions) {
     int subdivisions;
@@ -60,7 +74,7 @@ DrawSurface patchMetaSurface(const DrawSurface& patchSurface, const map::MapEnti
         subdivisions = patchSubdivisions / (quality == 0 ? 1 : quality);
     }
     const patch::PatchMesh mesh =
-        patch::tessellateForLighting(controlGrid(patchSurface), patchSurface.longestCurve, subdivisions);
+        patch::tessellateForLighting(surfaceControlGrid(patchSurface), patchSurface.longestCurve, subdivisions);
 
     DrawSurface ds = patchSurface;
     ds.kind = SurfaceKind::Meta;

@@ -6,12 +6,22 @@
 #pragma once
 
 #include "draw_surface.h"
+#include "patch.h"
 
 namespace q3::map {
 struct MapEntity;
 }
 
 namespace q3::bspstage::meta {
+
+// A patch surface's control points as a grid (position, normal, texture and lightmap coordinates,
+// colour).
+patch::ControlGrid surfaceControlGrid(const DrawSurface& patch);
+
+// A vertex of a tessellated patch as a draw vertex (colour rounded to bytes).
+bsp::DrawVert drawVert(const patch::PatchVertex& p);
+// A vertex grid (row-major) as a mesh with its triangles (alternating diagonals).
+patch::PatchMesh asPatchMesh(const std::vector<bsp::DrawVert>& verts, int width, int height);
 
 // The tessellated copy of a patch surface (kind Meta, same shader, fog and lighting keys).
 DrawSurface patchMetaSurface(const DrawSurface& patch, const map::MapEntity& entity, int patchSubdivisions);
