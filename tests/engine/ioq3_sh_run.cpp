@@ -111,6 +111,19 @@ double largestRuntimeDifference(const fs::path& bsp, const RendererSample& sampl
     return largest;
 }
 
+double gridSphereMean(const fs::path& bsp, const float position[3]) {
+    const std::vector<uint8_t> bytes = readFileBytes(bsp);
+    char error[256] = {};
+    q3sh_grid* grid = q3sh_grid_load(bytes.data(), bytes.size(), error, sizeof error);
+    if (!grid) throw std::runtime_error(std::string("the runtime rejects the grid: ") + error);
+    float coeffs[27];
+    q3sh_grid_sample(grid, position, coeffs);
+    q3sh_grid_free(grid);
+    // Coefficient 0 times Y_0 is the irradiance averaged over the sphere.
+    constexpr double kY0 = 0.282094791773878;
+    return kY0 * (coeffs[0] + coeffs[1] + coeffs[2]) / 3.0;
+}
+
 std::vector<double> frameTimes(const std::string& log, size_t skip) {
     std::vector<double> times;
     for (const std::string& line : linesWith(log, " all:")) {

@@ -52,6 +52,10 @@ struct RendererSample {
 std::vector<RendererSample> rendererSamples(const std::string& log);
 double largestRuntimeDifference(const std::filesystem::path& bsp, const RendererSample& sample);
 
+// The mean over all normals of the light libs/sh's runtime samples at `position` in `bsp` (format
+// units, averaged over the channels): the SH grid when the file has one, else lump 15 converted.
+double gridSphereMean(const std::filesystem::path& bsp, const float position[3]);
+
 // Frame times (ms, com_speeds' "all:") the client printed, without the first `skip` frames.
 std::vector<double> frameTimes(const std::string& log, size_t skip);
 

@@ -46,10 +46,7 @@ for name in "${maps[@]}"; do
     cp "$work/$name/baseoa/maps/$name.bsp" "$file"
     logs=$work/$name/logs-$variant
     status=0
-    # The engine reads the whole file into its hunk: the SH grids of the larger maps need more than
-    # the default 128 MB.
     IOQ3=$client nice "$tools/q3-screenshot" -s -e ioq3 -m third -S 640x480 -b "$data" -p "$oacmp" \
-      -x "ioq3:set com_hunkMegs 1536" \
       -o "$work/$name/$variant" -l "$logs" "$file" >"$work/$name/$variant.out" 2>&1 || status=$?
     log=$logs/${name}_$variant.ioq3-client.log
     loaded=$(grep -ac '^SH light grid:' "$log" || true)
