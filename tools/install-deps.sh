@@ -10,8 +10,9 @@ build_pkgs=(cmake ninja-build g++ pkg-config libembree-dev libtbb-dev libjpeg62-
 # it from parallel processes, and on a fresh machine all but one of them lost the race for apt's lock.
 test_pkgs=(clang libclang-rt-14-dev glslang-tools unzip ca-certificates python3 time
            libassimp5 libdraco7 libglib2.0-0 libjpeg62-turbo libminizip1 libpng16-16 libxml2)
+# libsdl2-dev: the headers the patched ioquake3 renderer (tools/engine/ioq3-sh) builds against.
 engine_pkgs=(ioquake3 ioquake3-server openarena openarena-server darkplaces darkplaces-server
-             fteqcc xvfb xauth libgl1-mesa-dri imagemagick)
+             fteqcc xvfb xauth libgl1-mesa-dri imagemagick libsdl2-dev)
 
 groups=("$@")
 [ ${#groups[@]} -gt 0 ] || groups=(build test)

@@ -45,14 +45,18 @@ MaskedStats maskedStats(const Image& image, const std::vector<uint8_t>& mask) {
     if (mask.size() != size_t(image.width) * size_t(image.height))
         throw std::invalid_argument("mask and screenshot sizes differ");
     MaskedStats stats;
-    double sum = 0;
+    double sum = 0, rgb[3] = {0, 0, 0};
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             if (!mask[size_t(y) * image.width + x]) continue;
             ++stats.pixels;
             sum += luminance(image.texel(x, y));
+            for (int c = 0; c < 3; ++c) rgb[c] += image.texel(x, y)[c];
         }
-    if (stats.pixels) stats.meanLuminance = sum / double(stats.pixels);
+    if (stats.pixels) {
+        stats.meanLuminance = sum / double(stats.pixels);
+        for (int c = 0; c < 3; ++c) stats.meanRgb[c] = rgb[c] / double(stats.pixels);
+    }
     return stats;
 }
 

@@ -30,10 +30,11 @@ PictureStats pictureStats(const Image& image);
 // pictures of different sizes.
 std::vector<uint8_t> differenceMask(const Image& a, const Image& b, int tolerance);
 
-// How many pixels a mask selects and their mean luma in `image` (0 when none).
+// How many pixels a mask selects, their mean luma and mean R, G, B in `image` (0 when none).
 struct MaskedStats {
     size_t pixels = 0;
     double meanLuminance = 0;
+    double meanRgb[3] = {0, 0, 0};
 };
 MaskedStats maskedStats(const Image& image, const std::vector<uint8_t>& mask);
 

@@ -83,10 +83,10 @@ constexpr int kEngineAttempts = 6;
 // Only exit status 1 (an engine failed) is retried, and not for a strict complaint about the map;
 // a fault of the map itself fails every attempt. 2 (usage) and 3 (a program or data missing) are
 // final. The output keeps the failed attempts ahead of the last one.
-RunResult runEngineScript(const std::vector<std::string>& words) {
+RunResult runEngineScript(const std::vector<std::string>& words, const std::string& environment = {}) {
     std::string earlier;
     for (int attempt = 1;; ++attempt) {
-        RunResult result = run(commandLine(words));
+        RunResult result = run(environment + commandLine(words));
         const bool done = result.status != 1 || result.output.find("strict:") != std::string::npos ||
                            attempt == kEngineAttempts;
         if (done) {
@@ -140,11 +140,20 @@ RunResult runLoadCheck(const fs::path& bsp, const std::string& engines, const fs
 
 RunResult runScreenshot(const fs::path& bsp, const std::string& engines, const std::string& modes,
                         const fs::path& prefix, const fs::path& logDir) {
+    return runScreenshotWith(bsp, engines, modes, prefix, logDir, {});
+}
+
+RunResult runScreenshotWith(const fs::path& bsp, const std::string& engines, const std::string& modes,
+                            const fs::path& prefix, const fs::path& logDir, const std::vector<std::string>& options,
+                            const fs::path& ioq3) {
     fs::create_directories(logDir);
     // 640x480 keeps the software rasteriser quick; the measures are shares and means, not sizes.
-    return runEngineScript({(engineToolsDir() / "q3-screenshot").string(), "-s", "-e", engines, "-m", modes, "-S",
-                            "640x480", "-b", engineDataRoot().string(), "-p", oacmpPk3().string(), "-o",
-                            prefix.string(), "-l", logDir.string(), bsp.string()});
+    std::vector<std::string> words = {(engineToolsDir() / "q3-screenshot").string(), "-s", "-e", engines, "-m", modes,
+                                      "-S", "640x480", "-b", engineDataRoot().string(), "-p", oacmpPk3().string(),
+                                      "-o", prefix.string(), "-l", logDir.string()};
+    words.insert(words.end(), options.begin(), options.end());
+    words.push_back(bsp.string());
+    return runEngineScript(words, ioq3.empty() ? std::string() : "IOQ3=" + shellQuote(ioq3.string()) + " ");
 }
 
 fs::path screenshotPath(const fs::path& prefix, const std::string& engine, const std::string& mode) {

@@ -60,6 +60,11 @@ RunResult runScreenshot(const std::filesystem::path& bsp, const std::string& eng
                         const std::filesystem::path& prefix, const std::filesystem::path& logDir);
 std::filesystem::path screenshotPath(const std::filesystem::path& prefix, const std::string& engine,
                                      const std::string& mode);
+// runScreenshot with more of q3-screenshot's options (e.g. {"-P", "X Y Z YAW", "-x", "ioq3:LINE"}) and
+// ioquake3 started from `ioq3` (its $IOQ3: a client copy beside other renderers; empty: Debian's).
+RunResult runScreenshotWith(const std::filesystem::path& bsp, const std::string& engines, const std::string& modes,
+                            const std::filesystem::path& prefix, const std::filesystem::path& logDir,
+                            const std::vector<std::string>& options, const std::filesystem::path& ioq3 = {});
 
 // Copies `bsp` into `engineDir` (created) as <name>.bsp: the engines see it under a name no package
 // ships. Returns the copy's path.

@@ -52,6 +52,7 @@ TEST(EnginePicture, DifferenceFindsTheModel) {
     const MaskedStats inModel = maskedStats(withModel, mask);
     EXPECT_EQ(inModel.pixels, 6u);
     EXPECT_NEAR(inModel.meanLuminance, 200.0, 1e-9);
+    for (double channel : inModel.meanRgb) EXPECT_NEAR(channel, 200.0, 1e-9);
     EXPECT_NEAR(maskedStats(scene, mask).meanLuminance, 40.0, 1e-9);  // the same pixels without it
     EXPECT_EQ(maskedStats(scene, differenceMask(scene, scene, 0)).pixels, 0u);
     EXPECT_EQ(maskedStats(scene, differenceMask(scene, scene, 0)).meanLuminance, 0);
