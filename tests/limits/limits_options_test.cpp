@@ -136,9 +136,9 @@ TEST(LimitsGrid, WideWorldWithTinyCellsStaysWithinTheLegacyPointLimit) {
 }
 
 // The SH grid's budget is a 1 GiB lump (docs/sh-grid-format.md), about 9.9 million points, so
-// this run is heavy (10 to 85 s of one core, 3 GiB) and sanitizer builds, which sample their heavy
-// tests, leave it out. The bound allows the points, their encoded lump and the serialized file
-// side by side, as the light stage holds them today; the lump itself must reach the cap, not pass it.
+// this run is heavy (10 to 85 s of one core, over 1 GiB) and sanitizer builds, which sample their
+// heavy tests, leave it out. The light stage holds the grid once, as its lump image; the bound is
+// the generous one of the limits cases. The lump itself must reach the cap, not pass it.
 #if Q3MAP_TEST_MAP_STRIDE <= 1
 TEST(LimitsGrid, WideWorldWithTinyShCellsStaysWithinTheLumpBudget) {
     const fs::path game = q3::test::tempDir();

@@ -313,7 +313,10 @@ ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
     ShTraceStats stats;
     if (!ctx.options.sh && !ctx.options.shBspx) return stats;
     const ShGridLayout layout = setupGridSH(ctx, log);
-    bsp::detachShGrid(ctx.bsp);  // an SH grid of the input BSP is not kept beside the new one
+    // An SH grid of the input BSP is not kept beside the new one: lump 18 is dropped, a BSPX copy
+    // emptied in its slot (attachGridSH fills or removes it, so the trailer's order is kept).
+    bsp::detachShGrid(ctx.bsp);
+    if (ctx.bsp.findBspx(sh::kBspxLumpName)) ctx.bsp.setBspx(sh::kBspxLumpName, {});
     sh::GridLumpImage grid = traceGridSH(ctx, layout, log, &stats);
     if (ctx.options.shGather) {  // indirect light on top of the direct light traced above
         const ShGatherStats gathered = gatherIndirectSH(ctx, shaderAlbedo(ctx, log), grid, stats, log);
