@@ -3,9 +3,9 @@
 // Dependency-free: engines can take this header and its .cpp as they are.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <array>
 #include <string>
 #include <vector>
 
