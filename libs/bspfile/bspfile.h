@@ -220,7 +220,8 @@ size_t lumpRecordSize(int lump);
 
 // Puts an SH grid lump image into lump 18 and switches the header to version 47 with 19 entries.
 void attachShGrid(Bsp& bsp, std::vector<uint8_t> lumpImage);
-// Drops lump 18 and returns to a plain version 46 header (17 entries, or 18 when lump 17 holds data).
+// Drops lump 18 (releasing its memory) and returns to a plain version 46 header (17 entries, or
+// 18 when lump 17 holds data).
 void detachShGrid(Bsp& bsp);
 
 // Entity lump -------------------------------------------------------------------------------------

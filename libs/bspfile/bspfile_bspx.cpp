@@ -39,7 +39,8 @@ bool Bsp::removeBspx(std::string_view name) {
 
 namespace detail {
 
-std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name) {
+std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name,
+                                       UncopiedLump* uncopied) {
     const size_t size = file.size();
     if (start + kTrailerHeaderBytes > size)
         fail(name, "bspx", "trailer header truncated at offset " + std::to_string(start));
@@ -66,8 +67,13 @@ std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t sta
                 fail(name, "bspx", "lump \"" + lump.name + "\" (offset " + std::to_string(offset) + ", length " +
                                        std::to_string(length) + ") extends past the end of the file (" +
                                        std::to_string(size) + " bytes)");
-            lump.data.assign(file.begin() + static_cast<ptrdiff_t>(offset),
-                             file.begin() + static_cast<ptrdiff_t>(offset + length));
+            if (uncopied && uncopied->index == SIZE_MAX && lump.name == uncopied->name) {
+                uncopied->range = file.subspan(static_cast<size_t>(offset), static_cast<size_t>(length));
+                uncopied->index = lumps.size();
+            } else {
+                lump.data.assign(file.begin() + static_cast<ptrdiff_t>(offset),
+                                 file.begin() + static_cast<ptrdiff_t>(offset + length));
+            }
         }
         lumps.push_back(std::move(lump));
     }

@@ -3,6 +3,7 @@
 #include "bspfile_internal.h"
 
 #include "file_io.h"
+#include "sh_grid_lump.h"
 
 #include <algorithm>
 #include <climits>
@@ -85,9 +86,20 @@ std::vector<T> recordsOf(std::span<const uint8_t> data, int lump, const std::str
 
 std::vector<uint8_t> rawOf(std::span<const uint8_t> data) { return std::vector<uint8_t>(data.begin(), data.end()); }
 
-}  // namespace
+// `range` lies inside `file`: its bytes are moved to the front, the rest dropped, and the buffer
+// becomes `target` (its capacity stays that of the file: the other lumps' few megabytes).
+void adoptFileBuffer(std::vector<uint8_t>& file, std::span<const uint8_t> range, std::vector<uint8_t>& target) {
+    const size_t offset = static_cast<size_t>(range.data() - file.data());
+    std::memmove(file.data(), file.data() + offset, range.size());
+    file.resize(range.size());
+    target = std::move(file);
+}
 
-Bsp parseBsp(std::span<const uint8_t> bytes, const std::string& name, const ReadOptions& options) {
+// parseBsp, and readBsp with `file` (the buffer `bytes` views): the SH grid, the one lump that can
+// be large (up to 1 GiB, as lump 18 or in the BSPX trailer), then takes over the file's buffer
+// instead of being copied beside it.
+Bsp parseFrom(std::span<const uint8_t> bytes, const std::string& name, const ReadOptions& options,
+              std::vector<uint8_t>* file) {
     const size_t size = bytes.size();
     if (size < 8)
         fail(name, "header", "truncated: file is " + std::to_string(size) + " bytes, a BSP header needs at least 144");
@@ -144,21 +156,32 @@ Bsp parseBsp(std::span<const uint8_t> bytes, const std::string& name, const Read
     bsp.lightGrid = recordsOf<GridPoint>(data[LUMP_LIGHTGRID], LUMP_LIGHTGRID, name);
     bsp.visibility = rawOf(data[LUMP_VISIBILITY]);
     bsp.lump17 = rawOf(data[LUMP_ADVERTISEMENTS]);
-    bsp.shGrid = rawOf(data[LUMP_LIGHTGRID_SH]);
+    const std::span<const uint8_t> shLump = data[LUMP_LIGHTGRID_SH];
+    if (!file) bsp.shGrid = rawOf(shLump);
 
     // A BSPX trailer starts at the end of the last lump rounded up to 4 bytes; anything else found
     // there is not ours to interpret and is ignored, as the engines do.
+    detail::UncopiedLump bspxSh{sh::kBspxLumpName};
+    const bool adoptBspx = file && shLump.empty();  // lump 18 takes the buffer when there is one
     const size_t trailer = detail::alignUp4(endOfLumps);
     if (trailer + 4 <= size && std::memcmp(bytes.data() + trailer, "BSPX", 4) == 0)
-        bsp.bspx = detail::parseBspxTrailer(bytes, trailer, name);
+        bsp.bspx = detail::parseBspxTrailer(bytes, trailer, name, adoptBspx ? &bspxSh : nullptr);
+    if (file && !shLump.empty()) adoptFileBuffer(*file, shLump, bsp.shGrid);
+    else if (adoptBspx && bspxSh.index != SIZE_MAX) adoptFileBuffer(*file, bspxSh.range, bsp.bspx[bspxSh.index].data);
 
     if (options.validate) validateBsp(bsp, name);
     return bsp;
 }
 
+}  // namespace
+
+Bsp parseBsp(std::span<const uint8_t> bytes, const std::string& name, const ReadOptions& options) {
+    return parseFrom(bytes, name, options, nullptr);
+}
+
 Bsp readBsp(const std::filesystem::path& path, const ReadOptions& options) {
-    const std::vector<uint8_t> bytes = readFileBytes(path);
-    return parseBsp(bytes, path.string(), options);
+    std::vector<uint8_t> bytes = readFileBytes(path);
+    return parseFrom(bytes, path.string(), options, &bytes);
 }
 
 namespace {

@@ -4,7 +4,9 @@
 #include "bspfile.h"
 
 #include <bit>
+#include <cstdint>
 #include <cstring>
+#include <string_view>
 
 namespace q3::bsp::detail {
 
@@ -65,7 +67,15 @@ protected:
 
 // BSPX trailer: parse the directory found at `start` (already known to hold "BSPX"), and append
 // one after the lumps of `out` (padded to 4 bytes first).
-std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name);
+// With `uncopied` named, the first lump of that name is left empty and its range in `file` is
+// stored in *uncopiedRange (with its index in *uncopiedIndex), for the caller to fill without a copy.
+struct UncopiedLump {
+    std::string_view name;
+    std::span<const uint8_t> range;
+    size_t index = SIZE_MAX;
+};
+std::vector<BspxLump> parseBspxTrailer(std::span<const uint8_t> file, size_t start, const std::string& name,
+                                       UncopiedLump* uncopied = nullptr);
 void appendBspxTrailer(ByteSink& out, const std::vector<BspxLump>& lumps, const std::string& name);
 
 }  // namespace q3::bsp::detail

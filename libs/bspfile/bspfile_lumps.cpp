@@ -85,7 +85,7 @@ void attachShGrid(Bsp& bsp, std::vector<uint8_t> lumpImage) {
 }
 
 void detachShGrid(Bsp& bsp) {
-    bsp.shGrid.clear();
+    std::vector<uint8_t>().swap(bsp.shGrid);  // its memory too: clear() would keep up to 1 GiB reserved
     bsp.version = kVersionQ3;
     bsp.headerLumps = bsp.lump17.empty() ? 17 : 18;
 }

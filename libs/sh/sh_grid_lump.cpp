@@ -2,6 +2,7 @@
 // little-endian whatever the host byte order.
 #include "sh_grid_lump.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -82,6 +83,17 @@ std::string checkGridLump(const uint8_t* data, size_t size) {
     return {};
 }
 
+namespace {
+
+GridPointSH readPoint(const uint8_t* p) {
+    GridPointSH point;
+    for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < 3; ++c, p += 4) point.coeffs[i][c] = readF32(p);
+    return point;
+}
+
+}  // namespace
+
 bool decodeGridLump(const uint8_t* data, size_t size, GridSH& out, std::string& error) {
     error = checkGridLump(data, size);
     if (!error.empty()) return false;
@@ -93,30 +105,67 @@ bool decodeGridLump(const uint8_t* data, size_t size, GridSH& out, std::string& 
     }
     const size_t numPoints = size_t(readI32(data + 36));
     grid.points.resize(numPoints);
-    const uint8_t* p = data + kGridHeaderBytes;
-    for (GridPointSH& point : grid.points) {
-        for (int i = 0; i < 9; ++i)
-            for (int c = 0; c < 3; ++c, p += 4) point.coeffs[i][c] = readF32(p);
-    }
+    for (size_t i = 0; i < numPoints; ++i) grid.points[i] = readPoint(data + kGridHeaderBytes + kGridPointBytes * i);
     out = std::move(grid);
     return true;
 }
 
-std::vector<uint8_t> encodeGridLump(const GridSH& grid) {
-    std::vector<uint8_t> bytes(kGridHeaderBytes + kGridPointBytes * grid.points.size());
-    uint8_t* p = bytes.data();
+std::vector<uint8_t> encodeGridLump(const GridSH& grid) { return GridLumpImage::encode(grid).release(); }
+
+GridLumpImage::GridLumpImage(const float mins[3], const float size[3], const int32_t bounds[3]) {
+    size_t count = 1;
+    for (int axis = 0; axis < 3; ++axis) count *= size_t(std::max(0, bounds[axis]));
+    start(mins, size, bounds, count);
+}
+
+void GridLumpImage::start(const float mins[3], const float size[3], const int32_t bounds[3], size_t count) {
+    numPoints_ = count;
+    for (int axis = 0; axis < 3; ++axis) bounds_[axis] = bounds[axis];
+    bytes_.assign(kGridHeaderBytes + kGridPointBytes * count, 0);  // 0.0f is four zero bytes
+    uint8_t* p = bytes_.data();
     for (int axis = 0; axis < 3; ++axis) {
-        writeF32(p + 4 * axis, grid.mins[axis]);
-        writeF32(p + 12 + 4 * axis, grid.size[axis]);
-        writeU32(p + 24 + 4 * axis, uint32_t(grid.bounds[axis]));
+        writeF32(p + 4 * axis, mins[axis]);
+        writeF32(p + 12 + 4 * axis, size[axis]);
+        writeU32(p + 24 + 4 * axis, uint32_t(bounds[axis]));
     }
-    writeU32(p + 36, uint32_t(grid.points.size()));
-    p += kGridHeaderBytes;
-    for (const GridPointSH& point : grid.points) {
-        for (int i = 0; i < 9; ++i)
-            for (int c = 0; c < 3; ++c, p += 4) writeF32(p, point.coeffs[i][c]);
+    writeU32(p + 36, uint32_t(count));
+}
+
+GridLumpImage GridLumpImage::encode(const GridSH& grid) {
+    GridLumpImage image;  // numPoints is the points held, whatever the bounds say (checkGridLump reports a mismatch)
+    image.start(grid.mins, grid.size, grid.bounds, grid.points.size());
+    for (size_t i = 0; i < grid.points.size(); ++i) image.setPoint(i, grid.points[i]);
+    return image;
+}
+
+GridPointSH GridLumpImage::point(size_t index) const {
+    return readPoint(bytes_.data() + kGridHeaderBytes + kGridPointBytes * index);
+}
+
+void GridLumpImage::setPoint(size_t index, const GridPointSH& point) {
+    uint8_t* p = bytes_.data() + kGridHeaderBytes + kGridPointBytes * index;
+    for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < 3; ++c, p += 4) writeF32(p, point.coeffs[i][c]);
+}
+
+GridSH GridLumpImage::decode() const {
+    GridSH grid;
+    for (int axis = 0; axis < 3; ++axis) {
+        grid.mins[axis] = readF32(bytes_.data() + 4 * axis);
+        grid.size[axis] = readF32(bytes_.data() + 12 + 4 * axis);
+        grid.bounds[axis] = bounds_[axis];
     }
-    return bytes;
+    grid.points.resize(numPoints_);
+    for (size_t i = 0; i < numPoints_; ++i) grid.points[i] = point(i);
+    return grid;
+}
+
+std::vector<uint8_t> GridLumpImage::release() {
+    numPoints_ = 0;
+    bounds_ = {};
+    std::vector<uint8_t> out;
+    out.swap(bytes_);
+    return out;
 }
 
 }  // namespace q3::sh

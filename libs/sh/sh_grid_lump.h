@@ -3,6 +3,7 @@
 // Dependency-free: engines can take this header and its .cpp as they are.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -34,5 +35,36 @@ std::string checkGridLump(const uint8_t* data, size_t size);
 // Decodes a lump image (calls checkGridLump first). Returns false and sets `error` when invalid.
 bool decodeGridLump(const uint8_t* data, size_t size, GridSH& out, std::string& error);
 std::vector<uint8_t> encodeGridLump(const GridSH& grid);
+
+// A lump image filled in place: the header is written when it is made and each point is encoded
+// straight into its 108 bytes, so a grid being built is held once, already in its file form.
+// release() hands the bytes over (to a BSP) without copying them.
+class GridLumpImage {
+public:
+    GridLumpImage() = default;
+    GridLumpImage(GridLumpImage&&) noexcept = default;
+    GridLumpImage& operator=(GridLumpImage&&) noexcept = default;
+    GridLumpImage(const GridLumpImage&) = delete;  // a grid is held once: copies are spelled encode(decode())
+    GridLumpImage& operator=(const GridLumpImage&) = delete;
+    // Header for the given lattice, every point zero.
+    GridLumpImage(const float mins[3], const float size[3], const int32_t bounds[3]);
+    static GridLumpImage encode(const GridSH& grid);
+
+    size_t numPoints() const { return numPoints_; }
+    std::array<int32_t, 3> bounds() const { return bounds_; }
+    GridPointSH point(size_t index) const;
+    void setPoint(size_t index, const GridPointSH& point);
+    const std::vector<uint8_t>& bytes() const { return bytes_; }
+    GridSH decode() const;
+    // The lump image, moved out; the object is left empty (no points).
+    std::vector<uint8_t> release();
+
+private:
+    void start(const float mins[3], const float size[3], const int32_t bounds[3], size_t count);
+
+    std::vector<uint8_t> bytes_;
+    std::array<int32_t, 3> bounds_{};
+    size_t numPoints_ = 0;
+};
 
 }  // namespace q3::sh

@@ -105,6 +105,7 @@ TEST(BspRoundTrip, Version47With19EntriesCarriesShGrid) {
     EXPECT_EQ(sh::checkGridLump(back.shGrid.data(), back.shGrid.size()), "");
 
     detachShGrid(back);
+    EXPECT_EQ(back.shGrid.capacity(), 0u) << "the dropped grid's memory is released, not kept reserved";
     EXPECT_EQ(back.version, kVersionQ3);
     EXPECT_EQ(back.headerLumps, 17);
     roundTrip(back);
@@ -306,6 +307,29 @@ TEST(Bspx, NameOfTwentyThreeCharactersIsAccepted) {
 }
 
 // Files ----------------------------------------------------------------------------------------------
+
+// readBsp gives the SH grid the file's own buffer (lump 18, or else the BSPX lump LIGHTGRID_SH)
+// instead of a copy beside the whole file: the BSP reads back as parseBsp reads it, and the grid's
+// buffer has the capacity of the file. Lumps around it keep their bytes and their order.
+TEST(BspFile, ReadBspHandsTheFileBufferToTheShGrid) {
+    const std::filesystem::path path = q3::test::tempDir() / "sh.bsp";
+    for (const int form : {18, 1, 2}) {  // lump 18; BSPX alone; BSPX with lump 18 beside it
+        Bsp bsp = makeSyntheticBsp();
+        bsp.setBspx("BEFORE", {1, 2, 3});
+        if (form != 1) attachShGrid(bsp, makeShGridLump(3, 2, 2));
+        if (form != 18) bsp.setBspx(sh::kBspxLumpName, makeShGridLump(2, 2, 1));
+        bsp.setBspx("AFTER", {4, 5, 6, 7, 8});
+        writeBsp(path, bsp);
+        const std::vector<uint8_t> image = readFileBytes(path);
+        const Bsp back = readBsp(path);
+        expectSameLumps(parseBsp(image, "sh.bsp"), back);
+        expectSameLumps(bsp, back);
+        EXPECT_EQ(serializeBsp(back), image) << "form " << form;
+        const std::vector<uint8_t>& owner = form == 1 ? back.findBspx(sh::kBspxLumpName)->data : back.shGrid;
+        EXPECT_EQ(owner.capacity(), image.size()) << "form " << form;
+        if (form == 2) EXPECT_EQ(back.findBspx(sh::kBspxLumpName)->data.capacity(), 40u + 108u * 4u);
+    }
+}
 
 TEST(BspFile, WriteThenReadGivesTheSameBsp) {
     const std::filesystem::path dir = q3::test::tempDir();

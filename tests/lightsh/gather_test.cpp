@@ -355,14 +355,15 @@ TEST(ShGatherRealMap, AddsNonNegativeIndirectLight) {
     lightVertexes(ctx, log);
     const ShGridLayout layout = setupGridSH(ctx, log);
     ShTraceStats stats;
-    const sh::GridSH direct = traceGridSH(ctx, layout, log, &stats);
-    sh::GridSH gathered = direct;
+    sh::GridLumpImage gatheredImage = traceGridSH(ctx, layout, log, &stats);
+    const sh::GridSH direct = gatheredImage.decode();
     std::vector<LightImage> images;
     const std::vector<ShaderAlbedo> albedo = loadShaderAlbedo(ctx, images, log);
     size_t withImage = 0;
     for (const ShaderAlbedo& a : albedo) withImage += a.image ? 1 : 0;
     EXPECT_GT(withImage, albedo.size() / 2) << "most shaders of a real map have a texture";
-    const ShGatherStats g = gatherIndirectSH(ctx, albedo, gathered, stats, log);
+    const ShGatherStats g = gatherIndirectSH(ctx, albedo, gatheredImage, stats, log);
+    const sh::GridSH gathered = gatheredImage.decode();
     // -shgatherstep 2 (the default): an eighth of the probes trace, plus those next to solid.
     EXPECT_EQ(g.probes + g.interpolated, stats.points - stats.inSolid);
     EXPECT_LT(g.probes, (stats.points - stats.inSolid) / 2);
@@ -370,8 +371,9 @@ TEST(ShGatherRealMap, AddsNonNegativeIndirectLight) {
 
     // Against every probe tracing: the interpolated indirect light stays close on average.
     ctx.options.shGatherStep = 1;
-    sh::GridSH everyProbe = direct;
-    const ShGatherStats all = gatherIndirectSH(ctx, albedo, everyProbe, stats, log);
+    sh::GridLumpImage everyProbeImage = sh::GridLumpImage::encode(direct);
+    const ShGatherStats all = gatherIndirectSH(ctx, albedo, everyProbeImage, stats, log);
+    const sh::GridSH everyProbe = everyProbeImage.decode();
     EXPECT_EQ(all.probes, stats.points - stats.inSolid);
     EXPECT_EQ(all.interpolated, 0u);
     double difference = 0, indirect = 0;

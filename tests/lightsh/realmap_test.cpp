@@ -55,7 +55,7 @@ RealMapRun runPipeline() {
     createLights(ctx, log);
     lightGrid(ctx, log);
     run.layout = setupGridSH(ctx, log);
-    run.grid = traceGridSH(ctx, run.layout, log, &run.stats);
+    run.grid = traceGridSH(ctx, run.layout, log, &run.stats).decode();
     run.legacyGrid = ctx.bsp.lightGrid;
 
     const std::vector<bsp::Entity> entities = ctx.entities;

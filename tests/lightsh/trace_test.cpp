@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <type_traits>
 
 #include "../light/light_test_util.h"
 #include "grid_encode.h"
@@ -65,7 +66,7 @@ TEST(ShTrace, PointLightMatchesLegacyContribution) {
     test::CapturingLog log;
     const ShGridLayout layout = setupGridSH(*ctx, log.log);
     ShTraceStats stats;
-    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats).decode();
     ASSERT_EQ(grid.points.size(), 125u);
     EXPECT_EQ(stats.blackAfterFill, 0u);
     const LightingEnv env = gridLightingEnv(*ctx, layout.size);
@@ -92,7 +93,7 @@ TEST(ShTrace, RedAndBlueOnOppositeSidesLegacyCannot) {
     ctx->lights.push_back(pointLight({0, -100, 0}, 400, {1, 0, 0}));
     ctx->lights.push_back(pointLight({0, 100, 0}, 250, {0, 0, 1}));
     test::CapturingLog log;
-    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log).decode();
     ASSERT_EQ(grid.points.size(), 1u);
     const sh::SH9Color value = pointSH(grid, 0);
     const sh::Rgb minusY = sh::evalIrradianceClamped(value, {0, -1, 0});
@@ -291,7 +292,7 @@ TEST(ShTrace, SunThroughSkyAndJitteredSamples) {
     test::CapturingLog log;
     const ShGridLayout layout = setupGridSH(*ctx, log.log);
     ASSERT_EQ(layout.bounds, (std::array<int, 3>{3, 5, 1}));
-    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log).decode();
     for (int y = 0; y < 5; ++y) {
         const sh::SH9Color v = pointSH(grid, size_t(1 + 3 * y));
         const double up = sh::evalIrradiance(v, {0, 0, 1}).r;
@@ -313,7 +314,7 @@ TEST(ShTrace, AmbientIsExactAndMinlightIsAFloor) {
     ctx->world.ambient = {30, 60, 90};
     test::CapturingLog log;
     const ShGridLayout layout = setupGridSH(*ctx, log.log);
-    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log).decode();
     for (size_t i = 0; i < grid.points.size(); ++i)
         for (const Vec3d& n : randomNormals(50, 3)) {
             const sh::Rgb v = sh::evalIrradiance(pointSH(grid, i), n);
@@ -324,7 +325,7 @@ TEST(ShTrace, AmbientIsExactAndMinlightIsAFloor) {
     // Floor 50: red and green rise to it, blue (90) stays; the lit directional part is untouched.
     ctx->world.minGridLight = {50, 50, 50};
     ctx->lights.push_back(pointLight({200, 0, 0}, 100));
-    const sh::GridSH floored = traceGridSH(*ctx, layout, log.log);
+    const sh::GridSH floored = traceGridSH(*ctx, layout, log.log).decode();
     const sh::SH9Color v = pointSH(floored, 0);
     const double y0 = sh::evalBasis({0, 0, 1})[0];
     // The light adds C * pi * Y0 to coefficient 0, i.e. C / 4 to the uniform part (C = 18.75 at 200 units).
@@ -333,7 +334,7 @@ TEST(ShTrace, AmbientIsExactAndMinlightIsAFloor) {
     EXPECT_NEAR(v.c[0][1] * y0, (60 + lightUniform) / 255.0, 1e-6);         // above the floor: as is
     EXPECT_NEAR(v.c[0][2] * y0, (90 + lightUniform) / 255.0, 1e-6);
     ctx->world.minGridLight = {};
-    const sh::SH9Color unfloored = pointSH(traceGridSH(*ctx, layout, log.log), 0);
+    const sh::SH9Color unfloored = pointSH(traceGridSH(*ctx, layout, log.log).decode(), 0);
     for (int k = 1; k < 9; ++k) EXPECT_EQ(v.c[k][0], unfloored.c[k][0]) << "the floor only touches coefficient 0";
     ctx->world.minGridLight = {50, 50, 50};
     sh::SH9Color manual;
@@ -343,7 +344,7 @@ TEST(ShTrace, AmbientIsExactAndMinlightIsAFloor) {
     EXPECT_NEAR(manual.c[0][2] * y0, 90 / 255.0, 1e-9);
     // -gridscale scales the whole point.
     ctx->options.gridScale = 2;
-    const sh::GridSH doubled = traceGridSH(*ctx, layout, log.log);
+    const sh::GridSH doubled = traceGridSH(*ctx, layout, log.log).decode();
     EXPECT_NEAR(doubled.points[1].coeffs[3][0], 2 * floored.points[1].coeffs[3][0], 1e-6);
 }
 
@@ -377,7 +378,7 @@ TEST(ShTrace, PointsInSolidAreNudgedOrFilled) {
     test::CapturingLog log;
     const ShGridLayout layout = setupGridSH(*ctx, log.log);
     ShTraceStats stats;
-    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log, &stats).decode();
     // x = 0..48 are deeper than half a cell (8) into the solid side; x = 64 lies on the plane.
     const uint64_t perColumn = uint64_t(layout.bounds[1]) * layout.bounds[2];
     EXPECT_EQ(stats.inSolid, 4 * perColumn);
@@ -394,24 +395,37 @@ TEST(ShTrace, PointsInSolidAreNudgedOrFilled) {
         }
 }
 
+sh::GridLumpImage zeroImage(int32_t bx, int32_t by, int32_t bz) {
+    const float mins[3] = {0, 0, 0}, size[3] = {8, 8, 8};
+    const int32_t bounds[3] = {bx, by, bz};
+    return sh::GridLumpImage(mins, size, bounds);
+}
+
+void setCoeff(sh::GridLumpImage& image, size_t i, int k, int ch, float v) {
+    sh::GridPointSH p = image.point(i);
+    p.coeffs[k][ch] = v;
+    image.setPoint(i, p);
+}
+
 TEST(ShTrace, NeighbourFillAveragesAndSpreads) {
-    std::vector<sh::GridPointSH> points(6, sh::GridPointSH{});
+    sh::GridLumpImage points = zeroImage(6, 1, 1);
     std::vector<uint8_t> unset = {0, 1, 1, 1, 1, 0};
-    points[0].coeffs[0][0] = 1;
-    points[5].coeffs[0][0] = 3;
-    EXPECT_EQ(fillFromNeighbours(points, unset, {6, 1, 1}), 4u);
+    setCoeff(points, 0, 0, 0, 1);
+    setCoeff(points, 5, 0, 0, 3);
+    EXPECT_EQ(fillFromNeighbours(points, unset), 4u);
     const float expected[6] = {1, 1, 1, 3, 3, 3};
-    for (int i = 0; i < 6; ++i) EXPECT_EQ(points[size_t(i)].coeffs[0][0], expected[i]) << i;
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(points.point(size_t(i)).coeffs[0][0], expected[i]) << i;
     // 2 x 2: the corner opposite the only set point gets the average of the two filled first.
-    std::vector<sh::GridPointSH> square(4, sh::GridPointSH{});
+    sh::GridLumpImage square = zeroImage(2, 2, 1);
     std::vector<uint8_t> unsetSquare = {0, 1, 1, 1};
-    square[0].coeffs[4][2] = 2;
-    EXPECT_EQ(fillFromNeighbours(square, unsetSquare, {2, 2, 1}), 3u);
-    EXPECT_EQ(square[3].coeffs[4][2], 2.0f);
+    setCoeff(square, 0, 4, 2, 2);
+    EXPECT_EQ(fillFromNeighbours(square, unsetSquare), 3u);
+    EXPECT_EQ(square.point(3).coeffs[4][2], 2.0f);
     // Nothing set anywhere: everything stays zero.
-    std::vector<sh::GridPointSH> none(8, sh::GridPointSH{});
+    sh::GridLumpImage none = zeroImage(2, 2, 2);
     std::vector<uint8_t> all(8, 1);
-    EXPECT_EQ(fillFromNeighbours(none, all, {2, 2, 2}), 0u);
+    EXPECT_EQ(fillFromNeighbours(none, all), 0u);
+    EXPECT_EQ(none.bytes(), zeroImage(2, 2, 2).bytes());
 }
 
 TEST(ShTrace, SameBytesWithOneAndTwoThreads) {
@@ -424,12 +438,12 @@ TEST(ShTrace, SameBytesWithOneAndTwoThreads) {
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
         ctx->threads = 1;
-        first = sh::encodeGridLump(traceGridSH(*ctx, layout, log.log));
+        first = traceGridSH(*ctx, layout, log.log).release();
     }
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
         ctx->threads = 2;
-        second = sh::encodeGridLump(traceGridSH(*ctx, layout, log.log));
+        second = traceGridSH(*ctx, layout, log.log).release();
     }
     EXPECT_EQ(first, second);
 }
@@ -446,7 +460,7 @@ TEST(ShTrace, ManyLightsStayWithinTheTruncationBounds) {
     }
     test::CapturingLog log;
     const ShGridLayout layout = setupGridSH(*ctx, log.log);
-    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, layout, log.log).decode();
     const sh::SH9Color value = pointSH(grid, 0);
     const LightingEnv env = gridLightingEnv(*ctx, layout.size);
     std::vector<LightContribution> contributions;
@@ -511,13 +525,13 @@ TEST(ShTrace, StyledAndGridlessLightsStayOut) {
     gridless.affectsGrid = false;  // spawnflags 16
     ctx->lights = {styled, gridless};
     test::CapturingLog log;
-    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    const sh::GridSH grid = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log).decode();
     sh::SH9Color ambientOnly;
     applyAmbientAndFloor(ambientOnly, {10, 10, 10}, {});
     const sh::GridPointSH expected = sh::toGridPoint(ambientOnly);
     for (const sh::GridPointSH& p : grid.points) EXPECT_EQ(std::memcmp(&p, &expected, sizeof(p)), 0);
     ctx->lights[0].style = 0;
-    const sh::GridSH lit = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log);
+    const sh::GridSH lit = traceGridSH(*ctx, setupGridSH(*ctx, log.log), log.log).decode();
     EXPECT_GT(lit.points[1].coeffs[2][0], 0.1f);  // from above once it is style 0
 }
 
@@ -531,7 +545,7 @@ TEST(ShTrace, AttachAsLump18OrBspx) {
     bsp::Bsp b;
     b.models.push_back(bsp::Model{});
     b.entities = std::string("{\n\"classname\" \"worldspawn\"\n}\n") + '\0';
-    attachGridSH(b, grid, false);
+    attachGridSH(b, sh::GridLumpImage::encode(grid), false);
     EXPECT_EQ(b.version, 47);
     EXPECT_EQ(b.headerLumps, 19);
     EXPECT_EQ(b.shGrid, sh::encodeGridLump(grid));
@@ -542,7 +556,7 @@ TEST(ShTrace, AttachAsLump18OrBspx) {
     EXPECT_EQ(lump17[0], 0);
     EXPECT_EQ(lump17[1], 0);
 
-    attachGridSH(b, grid, true);
+    attachGridSH(b, sh::GridLumpImage::encode(grid), true);
     EXPECT_EQ(b.version, 46);
     EXPECT_EQ(b.headerLumps, 17);
     EXPECT_TRUE(b.shGrid.empty());
@@ -552,6 +566,30 @@ TEST(ShTrace, AttachAsLump18OrBspx) {
     ASSERT_EQ(runtime.loadFromBsp(v46.data(), v46.size(), "x"), "");
     EXPECT_EQ(runtime.source(), sh::GridSource::Bspx);
     EXPECT_EQ(runtime.grid().points[1].coeffs[0][1], 0.5f);
+}
+
+// The grid is held once: the lump image the tracer fills is the buffer the BSP writes. It cannot
+// be copied, attachGridSH takes it only as an rvalue, and the bytes it hands over are the very
+// buffer that was filled (moved, not copied) for lump 18 and for the BSPX lump alike.
+TEST(ShTrace, AttachMovesTheLumpImageIntoTheBsp) {
+    static_assert(!std::is_copy_constructible_v<sh::GridLumpImage>);
+    static_assert(!std::is_copy_assignable_v<sh::GridLumpImage>);
+    static_assert(std::is_same_v<decltype(&attachGridSH), void (*)(bsp::Bsp&, sh::GridLumpImage&&, bool)>);
+    static_assert(std::is_same_v<decltype(&traceGridSH),
+                                 sh::GridLumpImage (*)(const LightContext&, const ShGridLayout&, Log&, ShTraceStats*)>);
+    for (const bool bspx : {false, true}) {
+        sh::GridLumpImage image = zeroImage(3, 2, 2);
+        setCoeff(image, 7, 2, 1, 0.25f);
+        const std::vector<uint8_t> expected = image.bytes();
+        const uint8_t* buffer = image.bytes().data();
+        bsp::Bsp b;
+        attachGridSH(b, std::move(image), bspx);
+        const std::vector<uint8_t>& stored = bspx ? b.findBspx(sh::kBspxLumpName)->data : b.shGrid;
+        EXPECT_EQ(stored.data(), buffer) << "bspx " << bspx;
+        EXPECT_EQ(stored, expected);
+        EXPECT_EQ(image.numPoints(), 0u);
+        EXPECT_TRUE(image.bytes().empty());
+    }
 }
 
 }  // namespace

@@ -136,8 +136,9 @@ TEST(LimitsGrid, WideWorldWithTinyCellsStaysWithinTheLegacyPointLimit) {
 }
 
 // The SH grid's budget is a 256 MiB lump (docs/sh-grid-format.md), about 2.5 million points, so
-// this run is heavy and sanitizer builds, which sample their heavy tests, leave it out. The bound
-// allows four times the lump in memory; the lump itself must reach the cap, not pass it.
+// this run is heavy and sanitizer builds, which sample their heavy tests, leave it out. The light
+// stage holds the grid once, as its lump image; the bound allows four times the lump. The lump
+// itself must reach the cap, not pass it.
 #if Q3MAP_TEST_MAP_STRIDE <= 1
 TEST(LimitsGrid, WideWorldWithTinyShCellsStaysWithinTheLumpBudget) {
     const fs::path game = q3::test::tempDir();

@@ -1,6 +1,7 @@
 // The SH grid lump codec: byte layout, round trip, and rejection of malformed lumps with one clear line.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -69,6 +70,30 @@ TEST(ShGridLump, RoundTripIsBitExact) {
     ASSERT_EQ(back.points.size(), grid.points.size());
     EXPECT_EQ(std::memcmp(back.points.data(), grid.points.data(), grid.points.size() * sizeof(GridPointSH)), 0);
     EXPECT_EQ(encodeGridLump(back), bytes);
+}
+
+// Points set one by one into an image made from the lattice give the bytes of the whole-grid
+// encoder; each point reads back bit-exact, and release() hands the buffer over and empties it.
+TEST(ShGridLump, ImageFilledInPlaceMatchesTheEncoder) {
+    const GridSH grid = makeGrid(3, 2, 4);
+    GridLumpImage image(grid.mins, grid.size, grid.bounds);
+    ASSERT_EQ(image.numPoints(), grid.points.size());
+    EXPECT_EQ(image.bounds(), (std::array<int32_t, 3>{3, 2, 4}));
+    EXPECT_EQ(checkGridLump(image.bytes().data(), image.bytes().size()), "") << "a fresh image is a valid all-zero grid";
+    for (size_t i = grid.points.size(); i-- > 0;) image.setPoint(i, grid.points[i]);  // any order
+    EXPECT_EQ(image.bytes(), encodeGridLump(grid));
+    for (size_t i = 0; i < grid.points.size(); ++i) {
+        const GridPointSH p = image.point(i);
+        EXPECT_EQ(std::memcmp(&grid.points[i], &p, sizeof p), 0) << i;
+    }
+    const GridSH back = image.decode();
+    EXPECT_EQ(std::memcmp(back.points.data(), grid.points.data(), grid.points.size() * sizeof(GridPointSH)), 0);
+    const uint8_t* buffer = image.bytes().data();
+    const std::vector<uint8_t> bytes = image.release();
+    EXPECT_EQ(bytes.data(), buffer);
+    EXPECT_EQ(bytes, encodeGridLump(grid));
+    EXPECT_TRUE(image.bytes().empty());
+    EXPECT_EQ(image.numPoints(), 0u);
 }
 
 TEST(ShGridLump, RejectsShortHeader) {

@@ -52,7 +52,7 @@ void addAreaEmitter(sh::SH9Color& acc, const Light& light, Vec3 pushed, Vec3 tra
                                     toRgb(light.color * transmission, radiance));
 }
 
-bool isBlack(const sh::GridPointSH& p) {
+bool isBlack(const sh::GridPointSH& p) {  // every coefficient zero
     for (const auto& c : p.coeffs)
         if (c[0] != 0 || c[1] != 0 || c[2] != 0) return false;
     return true;
@@ -137,10 +137,10 @@ void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {
     }
 }
 
-uint64_t fillFromNeighbours(std::vector<sh::GridPointSH>& points, std::vector<uint8_t>& unset,
-                            std::array<int, 3> bounds) {
+uint64_t fillFromNeighbours(sh::GridLumpImage& grid, std::vector<uint8_t>& unset) {
+    const std::array<int32_t, 3> bounds = grid.bounds();
     const int bx = bounds[0], by = bounds[1], bz = bounds[2];
-    const size_t count = points.size();
+    const size_t count = grid.numPoints();
     auto indexOf = [&](int x, int y, int z) { return size_t(x) + size_t(y) * bx + size_t(z) * bx * by; };
     auto forNeighbours = [&](size_t i, auto&& visit) {
         const int x = int(i % size_t(bx)), y = int((i / size_t(bx)) % size_t(by)), z = int(i / (size_t(bx) * by));
@@ -164,26 +164,27 @@ uint64_t fillFromNeighbours(std::vector<sh::GridPointSH>& points, std::vector<ui
         }
     }
     uint64_t filled = 0;
-    std::vector<sh::GridPointSH> values;
     while (!frontier.empty()) {
-        // Every value of a pass reads only points set before it, so the order inside a pass does not matter.
-        values.assign(frontier.size(), sh::GridPointSH{});
-        for (size_t f = 0; f < frontier.size(); ++f) {
+        // Every value of a pass reads only points set before it (frontier points stay unset until
+        // the pass ends), so each is written in place and the order inside a pass does not matter.
+        for (size_t i : frontier) {
             double sum[9][3] = {};
             int n = 0;
-            forNeighbours(frontier[f], [&](size_t j) {
+            forNeighbours(i, [&](size_t j) {
                 if (unset[j]) return;
                 ++n;
+                const sh::GridPointSH neighbour = grid.point(j);
                 for (int k = 0; k < 9; ++k)
-                    for (int ch = 0; ch < 3; ++ch) sum[k][ch] += points[j].coeffs[k][ch];
+                    for (int ch = 0; ch < 3; ++ch) sum[k][ch] += neighbour.coeffs[k][ch];
             });
+            sh::GridPointSH value;
             for (int k = 0; k < 9; ++k)
-                for (int ch = 0; ch < 3; ++ch) values[f].coeffs[k][ch] = float(sum[k][ch] / std::max(1, n));
+                for (int ch = 0; ch < 3; ++ch) value.coeffs[k][ch] = float(sum[k][ch] / std::max(1, n));
+            grid.setPoint(i, value);
         }
         std::vector<size_t> next;
-        for (size_t f = 0; f < frontier.size(); ++f) {
-            points[frontier[f]] = values[f];
-            unset[frontier[f]] = 0;
+        for (size_t i : frontier) {
+            unset[i] = 0;
             ++filled;
         }
         for (size_t i : frontier)
@@ -199,15 +200,12 @@ uint64_t fillFromNeighbours(std::vector<sh::GridPointSH>& points, std::vector<ui
     return filled;
 }
 
-sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log& log, ShTraceStats* statsOut) {
-    sh::GridSH grid;
-    for (int axis = 0; axis < 3; ++axis) {
-        grid.mins[axis] = layout.mins[axis];
-        grid.size[axis] = layout.size[axis];
-        grid.bounds[axis] = layout.bounds[axis];
-    }
-    const size_t numPoints = static_cast<size_t>(layout.numPoints());
-    grid.points.assign(numPoints, sh::GridPointSH{});
+sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log& log, ShTraceStats* statsOut) {
+    const float mins[3] = {layout.mins.x, layout.mins.y, layout.mins.z};
+    const float size[3] = {layout.size.x, layout.size.y, layout.size.z};
+    const int32_t bounds[3] = {layout.bounds[0], layout.bounds[1], layout.bounds[2]};
+    sh::GridLumpImage grid(mins, size, bounds);
+    const size_t numPoints = grid.numPoints();
 
     // The same contributions as the legacy grid, inhibit radius included (its cells, not ours).
     const std::string gridSizeValue = ctx.entities.empty() ? std::string() : ctx.entities[0].value("gridsize");
@@ -223,7 +221,7 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     const float gridScale = ctx.options.gridScale;
 
     std::vector<uint8_t> solid(numPoints, 0), nudged(numPoints, 0);
-    std::vector<Vec3> origins(numPoints);
+    std::vector<Vec3> origins(ctx.options.shGather ? numPoints : 0);  // only the gather reads them
     log.info(strCat("SH light grid: ", numPoints, " points"));
     Progress progress = Progress::forConsole(log, numPoints);
     // Where a point is lit: its lattice position or the nearest free nudge; false when in solid.
@@ -234,12 +232,12 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
             return placed;
         }
         nudged[i] = placed->nudged ? 1 : 0;
-        origins[i] = placed->origin;
+        if (!origins.empty()) origins[i] = placed->origin;
         return placed;
     };
     auto store = [&](size_t i, sh::SH9Color& acc) {
         applyAmbientAndFloor(acc, ctx.world.ambient, ctx.world.minGridLight);
-        grid.points[i] = sh::toGridPoint(sh::scale(acc, gridScale));
+        grid.setPoint(i, sh::toGridPoint(sh::scale(acc, gridScale)));
     };
     const GridLattice lattice{layout.bounds, layout.mins, layout.size};
     if (ctx.options.cheapGrid) {
@@ -296,13 +294,14 @@ sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log&
     for (size_t i = 0; i < numPoints; ++i) {
         stats.nudged += nudged[i];
         stats.inSolid += solid[i];
-        stats.blackBeforeFill += isBlack(grid.points[i]) ? 1 : 0;
+        stats.blackBeforeFill += isBlack(grid.point(i)) ? 1 : 0;
     }
-    stats.solid = solid;
-    stats.origins = std::move(origins);
+    std::vector<uint8_t>().swap(nudged);  // counted: freed before the fill
     std::vector<uint8_t> unset = solid;
-    stats.filled = fillFromNeighbours(grid.points, unset, layout.bounds);
-    for (const sh::GridPointSH& p : grid.points) stats.blackAfterFill += isBlack(p) ? 1 : 0;
+    stats.solid = std::move(solid);
+    stats.origins = std::move(origins);
+    stats.filled = fillFromNeighbours(grid, unset);
+    for (size_t i = 0; i < numPoints; ++i) stats.blackAfterFill += isBlack(grid.point(i)) ? 1 : 0;
     log.info(strCat("SH grid: ", stats.nudged, " points nudged out of solid, ", stats.inSolid, " in solid, ",
                     stats.filled, " filled from neighbours, ", stats.blackBeforeFill, " black before the fill, ",
                     stats.blackAfterFill, " after"));
@@ -314,14 +313,17 @@ ShTraceStats lightGridSH(LightContext& ctx, Log& log) {
     ShTraceStats stats;
     if (!ctx.options.sh && !ctx.options.shBspx) return stats;
     const ShGridLayout layout = setupGridSH(ctx, log);
-    bsp::detachShGrid(ctx.bsp);  // an SH grid of the input BSP is not kept beside the new one
-    sh::GridSH grid = traceGridSH(ctx, layout, log, &stats);
+    // An SH grid of the input BSP is not kept beside the new one: lump 18 is dropped, a BSPX copy
+    // emptied in its slot (attachGridSH fills or removes it, so the trailer's order is kept).
+    bsp::detachShGrid(ctx.bsp);
+    if (ctx.bsp.findBspx(sh::kBspxLumpName)) ctx.bsp.setBspx(sh::kBspxLumpName, {});
+    sh::GridLumpImage grid = traceGridSH(ctx, layout, log, &stats);
     if (ctx.options.shGather) {  // indirect light on top of the direct light traced above
         const ShGatherStats gathered = gatherIndirectSH(ctx, shaderAlbedo(ctx, log), grid, stats, log);
         ctx.stats.shGatherRays = gathered.rays;
         ctx.stats.shGatherSeconds = gathered.seconds;
     }
-    attachGridSH(ctx.bsp, grid, ctx.options.shBspx);
+    attachGridSH(ctx.bsp, std::move(grid), ctx.options.shBspx);
     return stats;
 }
 

@@ -73,7 +73,7 @@ struct ShTraceStats {
     uint64_t blackBeforeFill = 0; // all-zero points after the trace
     uint64_t blackAfterFill = 0;  // all-zero points at the end
     std::vector<uint8_t> solid;   // per point: 1 = stayed in solid
-    std::vector<Vec3> origins;    // per point: where it was lit (its lattice position or the nudged one)
+    std::vector<Vec3> origins;    // per point, with -shgather only: where it was lit (lattice or nudged position)
 };
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
@@ -105,20 +105,21 @@ void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight);
 
 // Neighbour fill of the points marked in `unset`: each pass gives every unset point next to a set
 // one (6-neighbourhood) the average of its set neighbours, then marks it set; repeated until no
-// point changes. Returns how many points received a value.
-uint64_t fillFromNeighbours(std::vector<sh::GridPointSH>& points, std::vector<uint8_t>& unset,
-                            std::array<int, 3> bounds);
+// point changes. Works in the lump image itself. Returns how many points received a value.
+uint64_t fillFromNeighbours(sh::GridLumpImage& grid, std::vector<uint8_t>& unset);
 
 // TraceGridSH: one SH point per layout point, in parallel (each point writes its own slot, so
-// the result does not depend on the thread count).
-sh::GridSH traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log& log, ShTraceStats* stats = nullptr);
+// the result does not depend on the thread count). Each point is encoded straight into the lump
+// image as it is lit: the grid exists once, already in the form the BSP stores.
+sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layout, Log& log, ShTraceStats* stats = nullptr);
 
 // With bspx false: lump 18, version 47, 19 header entries (lump 17 left as it is: empty for
 // q3map2 output). With bspx true: version 46 and the BSPX lump LIGHTGRID_SH (lump 18 dropped).
-void attachGridSH(bsp::Bsp& bsp, const sh::GridSH& grid, bool bspx);
+// The image's bytes move into the BSP (no copy); `grid` is left empty.
+void attachGridSH(bsp::Bsp& bsp, sh::GridLumpImage&& grid, bool bspx);
 
 // The whole SH step of the stage, for the pipeline after lightGrid: nothing without -sh; else
-// setupGridSH, traceGridSH and attachGridSH(ctx.bsp, grid, ctx.options.shBspx). Returns the stats.
+// setupGridSH, traceGridSH and attachGridSH(ctx.bsp, std::move(grid), ctx.options.shBspx). Returns the stats.
 ShTraceStats lightGridSH(LightContext& ctx, Log& log);
 
 }  // namespace q3::light

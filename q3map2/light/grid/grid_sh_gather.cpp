@@ -9,6 +9,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -402,12 +403,13 @@ bool interpolateCoarse(size_t i, const int32_t bounds[3], int step, const std::v
 
 }  // namespace
 
-ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
+ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridLumpImage& grid,
                                const ShTraceStats& traced, Log& log) {
     const auto start = std::chrono::steady_clock::now();
     const GatherScene scene(ctx, albedo);
     const std::vector<Vec3> directions = gatherDirections(ctx.options.shGatherSamples);
-    const size_t numPoints = grid.points.size();
+    const size_t numPoints = grid.numPoints();
+    const std::array<int32_t, 3> bounds = grid.bounds();
     const double gridScale = ctx.options.gridScale;
     const int step = std::max(1, ctx.options.shGatherStep);
     // Indirect light varies slowly: probes of the coarse lattice (every `step`-th per axis) gather,
@@ -430,14 +432,14 @@ ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAl
         });
     };
     parallel([&](size_t i) {
-        if (onCoarseLattice(i, grid.bounds, step)) gatherAt(i);
+        if (onCoarseLattice(i, bounds.data(), step)) gatherAt(i);
     });
     // Reads only what the first pass wrote, so the order of this pass does not matter.
     std::vector<uint8_t> fine(numPoints, 0);
     parallel([&](size_t i) {
         if (have[i]) return;
         sh::SH9Color value;
-        if (interpolateCoarse(i, grid.bounds, step, indirect, have, scene, traced.origins, value)) {
+        if (interpolateCoarse(i, bounds.data(), step, indirect, have, scene, traced.origins, value)) {
             indirect[i] = value;
             fine[i] = 1;
         } else {
@@ -448,15 +450,16 @@ ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAl
     for (size_t i = 0; i < numPoints; ++i) {
         if (!gathered[i] && !fine[i]) continue;
         const sh::SH9Color add = sh::scale(indirect[i], gridScale);
-        sh::GridPointSH& p = grid.points[i];
+        sh::GridPointSH p = grid.point(i);
         for (int k = 0; k < sh::kCoeffCount; ++k)
             for (int ch = 0; ch < 3; ++ch) p.coeffs[k][ch] = float(double(p.coeffs[k][ch]) + add.c[k][ch]);
+        grid.setPoint(i, p);
     }
 
     // Points in solid took their value from free neighbours before the gather: take it again.
     std::vector<uint8_t> unset(numPoints, 0);
     for (size_t i = 0; i < numPoints && i < traced.solid.size(); ++i) unset[i] = traced.solid[i];
-    fillFromNeighbours(grid.points, unset, {grid.bounds[0], grid.bounds[1], grid.bounds[2]});
+    fillFromNeighbours(grid, unset);
 
     ShGatherStats stats;
     for (size_t i = 0; i < numPoints; ++i) {

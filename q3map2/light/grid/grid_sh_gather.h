@@ -79,7 +79,7 @@ struct ShGatherStats {
 // solid or past the grid). Parallel over probes; each probe sums its own rays in a fixed order and
 // interpolation reads only coarse results, so the result does not depend on the thread count.
 // `traced` holds where TraceGridSH lit each probe (ShTraceStats::solid and ::origins).
-ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridSH& grid,
+ShGatherStats gatherIndirectSH(const LightContext& ctx, std::span<const ShaderAlbedo> albedo, sh::GridLumpImage& grid,
                                const ShTraceStats& traced, Log& log);
 
 // The indirect SH irradiance at one point (no -gridscale), exposed for tests and measurements.

@@ -92,8 +92,8 @@ ShGridLayout setupGridSH(const LightContext& ctx, Log& log) {
     return layout;
 }
 
-void attachGridSH(bsp::Bsp& bsp, const sh::GridSH& grid, bool bspx) {
-    std::vector<uint8_t> image = sh::encodeGridLump(grid);
+void attachGridSH(bsp::Bsp& bsp, sh::GridLumpImage&& grid, bool bspx) {
+    std::vector<uint8_t> image = grid.release();
     if (bspx) {
         bsp::detachShGrid(bsp);
         bsp.setBspx(sh::kBspxLumpName, std::move(image));
