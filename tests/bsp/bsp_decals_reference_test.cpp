@@ -7,14 +7,12 @@
 // patch vertex normals may differ in the last bit.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
 #include <tuple>
 
 #include "bsp_reference.h"
-#include "bsp_samples.h"
 #include "bspfile.h"
 #include "file_io.h"
 #include "reference_fixture.h"
@@ -57,9 +55,7 @@ int srfDecalSurfaces(const std::string& srf) {
 class DecalsReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(DecalsReference, DecalSurfacesMatchQ3map2s) {
-    const fs::path work = q3::test::tempDir() / ("decals-" + std::to_string(::getpid()));
-    const fs::path ours = compileSample("decals", work / "ours");
-    const fs::path theirs = referenceSampleCompile(reference(), "decals", work / "ref");
+    const auto [work, ours, theirs] = compileSampleBothWays(reference(), "decals");
     const bsp::Bsp a = bsp::readBsp(ours / "decals.bsp"), b = bsp::readBsp(theirs / "decals.bsp");
     for (int lump : {bsp::LUMP_SHADERS, bsp::LUMP_PLANES, bsp::LUMP_NODES, bsp::LUMP_LEAFS, bsp::LUMP_LEAFSURFACES,
                      bsp::LUMP_LEAFBRUSHES, bsp::LUMP_MODELS, bsp::LUMP_BRUSHES, bsp::LUMP_BRUSHSIDES,

@@ -5,13 +5,10 @@
 // patch's own (a difference of patch normals), and so the copies' on it, which average them.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cstring>
 #include <vector>
 
 #include "bsp_reference.h"
-#include "bsp_samples.h"
 #include "bspfile.h"
 #include "file_io.h"
 #include "reference_fixture.h"
@@ -26,9 +23,7 @@ using namespace q3::bspstage::test;
 class FoliageReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(FoliageReference, FoliageSurfaceEqualsQ3map2s) {
-    const fs::path work = q3::test::tempDir() / ("foliage-" + std::to_string(::getpid()));
-    const fs::path ours = compileSample("foliage", work / "ours");
-    const fs::path theirs = referenceSampleCompile(reference(), "foliage", work / "ref");
+    const auto [work, ours, theirs] = compileSampleBothWays(reference(), "foliage");
     const bsp::Bsp a = bsp::readBsp(ours / "foliage.bsp"), b = bsp::readBsp(theirs / "foliage.bsp");
     for (int lump = 0; lump < bsp::kMaxLumps; ++lump)
         if (lump != bsp::LUMP_ENTITIES && lump != bsp::LUMP_DRAWVERTS)

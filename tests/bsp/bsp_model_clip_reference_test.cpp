@@ -4,11 +4,8 @@
 // clipped models must agree. The refused clip mode (the cone) is left out of the comparison.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include "bsp_compare.h"
 #include "bsp_reference.h"
-#include "bsp_samples.h"
 #include "bspfile.h"
 #include "reference_fixture.h"
 #include "test_data.h"
@@ -22,9 +19,10 @@ using namespace q3::bspstage::test;
 class ModelClipReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(ModelClipReference, ContentsAroundClippedModelsEqualQ3map2s) {
-    const fs::path work = q3::test::tempDir() / ("model-clip-" + std::to_string(::getpid()));
-    const bsp::Bsp ours = bsp::readBsp(compileSample("model_clip", work / "ours") / "model_clip.bsp");
-    const bsp::Bsp theirs = bsp::readBsp(referenceSampleCompile(reference(), "model_clip", work / "ref") / "model_clip.bsp");
+    const SampleCompiles compiles = compileSampleBothWays(reference(), "model_clip");
+    const fs::path& work = compiles.work;
+    const bsp::Bsp ours = bsp::readBsp(compiles.ours / "model_clip.bsp");
+    const bsp::Bsp theirs = bsp::readBsp(compiles.theirs / "model_clip.bsp");
     // Boxes around the crate, the pillar and the ramp (the cone at 384 384 is left out).
     const Bounds boxes[3] = {{{96, 96, 0}, {160, 160, 40}}, {{368, 112, 0}, {400, 144, 136}}, {{56, 376, 0}, {136, 440, 40}}};
     unsigned state = 12345;

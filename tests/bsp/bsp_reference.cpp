@@ -92,6 +92,14 @@ fs::path referenceSampleCompile(const fs::path& reference, const std::string& na
     return work / "samples/maps";
 }
 
+SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name) {
+    SampleCompiles out;
+    out.work = q3::test::tempDir() / (name + "-" + std::to_string(::getpid()));
+    out.ours = compileSample(name, out.work / "ours");
+    out.theirs = referenceSampleCompile(reference, name, out.work / "ref");
+    return out;
+}
+
 fs::path oacmpSource(const std::string& name) {
     for (const fs::path& p : oacmpMapSources())
         if (p.stem() == name) return p;

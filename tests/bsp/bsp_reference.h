@@ -26,6 +26,14 @@ std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const s
 std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
                                              const std::filesystem::path& work);
 
+// The sample `name` compiled by ours (compileSample) and by the reference (referenceSampleCompile),
+// each in its own folder under `work`, a scratch folder named after the sample and the process:
+// the folders holding each tool's outputs. Remove `work` when done.
+struct SampleCompiles {
+    std::filesystem::path work, ours, theirs;
+};
+SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name);
+
 // The .map source of an oacmp map by name ("oacmpdm7"); fails the test when it is missing.
 std::filesystem::path oacmpSource(const std::string& name);
 

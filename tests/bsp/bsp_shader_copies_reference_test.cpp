@@ -3,13 +3,10 @@
 // lump but the entities (which record the command line), and the same .srf and .prt.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
 
 #include "bsp_reference.h"
-#include "bsp_samples.h"
 #include "bspfile.h"
 #include "file_io.h"
 #include "reference_fixture.h"
@@ -24,9 +21,7 @@ using namespace q3::bspstage::test;
 class ShaderCopiesReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(ShaderCopiesReference, EveryLumpButTheEntitiesEqualsQ3map2s) {
-    const fs::path work = q3::test::tempDir() / ("shader-copies-" + std::to_string(::getpid()));
-    const fs::path ours = compileSample("shader_copies", work / "ours");
-    const fs::path theirs = referenceSampleCompile(reference(), "shader_copies", work / "ref");
+    const auto [work, ours, theirs] = compileSampleBothWays(reference(), "shader_copies");
     const bsp::Bsp a = bsp::readBsp(ours / "shader_copies.bsp"), b = bsp::readBsp(theirs / "shader_copies.bsp");
     for (int lump = 0; lump < bsp::kMaxLumps; ++lump)
         if (lump != bsp::LUMP_ENTITIES)

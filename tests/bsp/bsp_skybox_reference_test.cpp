@@ -4,12 +4,9 @@
 // winding difference puts a face's first corner elsewhere).
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 
 #include "bsp_reference.h"
-#include "bsp_samples.h"
 #include "bspfile.h"
 #include "file_io.h"
 #include "reference_fixture.h"
@@ -39,9 +36,7 @@ std::vector<std::vector<std::string>> vertexSets(const bsp::Bsp& b) {
 class SkyboxReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(SkyboxReference, SkyCopiesEqualQ3map2s) {
-    const fs::path work = q3::test::tempDir() / ("skybox-" + std::to_string(::getpid()));
-    const fs::path ours = compileSample("skybox", work / "ours");
-    const fs::path theirs = referenceSampleCompile(reference(), "skybox", work / "ref");
+    const auto [work, ours, theirs] = compileSampleBothWays(reference(), "skybox");
     const std::string srf = readFileText(ours / "skybox.srf");
     EXPECT_EQ(srf, readFileText(theirs / "skybox.srf"));
     EXPECT_NE(srf.find("\tparent "), std::string::npos) << "the sample should make sky copies";
