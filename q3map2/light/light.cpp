@@ -128,9 +128,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
         const ShTraceStats sh = lightGridSH(ctx, log);
         shGrid = GridDimensions{sh.bounds[0], sh.bounds[1], sh.bounds[2]};
     } else if (!options.noGrid) {
-        // An SH grid an earlier -sh run left would no longer match the light just computed.
-        if (!ctx.bsp.shGrid.empty()) bsp::detachShGrid(ctx.bsp);
-        ctx.bsp.removeBspx(sh::kBspxLumpName);
+        removeGridSH(ctx.bsp);
     }
     phase("write");
     writeLitBsp(ctx, log);

@@ -117,6 +117,9 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
 // q3map2 output). With bspx true: version 46 and the BSPX lump LIGHTGRID_SH (lump 18 dropped).
 // The image's bytes move into the BSP (no copy); `grid` is left empty.
 void attachGridSH(bsp::Bsp& bsp, sh::GridLumpImage&& grid, bool bspx);
+// Removes an SH grid an earlier -sh run left (lump 18, then version 46 again, or the BSPX lump): a
+// run that lights without -sh must not keep a grid that no longer matches its light.
+void removeGridSH(bsp::Bsp& bsp);
 
 // The whole SH step of the stage, for the pipeline after lightGrid: nothing without -sh; else
 // setupGridSH, traceGridSH and attachGridSH(ctx.bsp, std::move(grid), ctx.options.shBspx). Returns the stats.

@@ -103,4 +103,9 @@ void attachGridSH(bsp::Bsp& bsp, sh::GridLumpImage&& grid, bool bspx) {
     }
 }
 
+void removeGridSH(bsp::Bsp& bsp) {
+    if (!bsp.shGrid.empty()) bsp::detachShGrid(bsp);
+    bsp.removeBspx(sh::kBspxLumpName);
+}
+
 }  // namespace q3::light
