@@ -8,7 +8,7 @@ import subprocess
 import sys
 import tempfile
 
-from bench_data import ROOT, find_file, fresh_key, load_average, measure  # noqa: F401 (measure: vis-compare)
+from bench_data import ROOT, find_file, fresh_key, load_average, measure
 
 PROG = os.path.basename(sys.argv[0])
 VISIBILITY = 16  # lump index of the PVS in an IBSP v46 file
