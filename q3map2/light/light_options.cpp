@@ -253,6 +253,10 @@ cli::OptionTable<O> buildLightTable() {
            "Add to the SH grid the indirect light each probe sees by tracing rays into the lit map (lightmap "
            "light times texture colour); implies -sh",
            kImplemented, [](O& o, Values) { o.sh = o.shGather = true; });
+    flag({"-shexact"}, &O::shExact,
+         "Trace every sun of every SH probe instead of sharing the verdict of a block's corner probes where "
+         "they all agree",
+         kImplemented);
     integer({"-shgathersamples"}, &O::shGatherSamples, Range::between(16, 65536),
             "Rays per SH probe of -shgather (a fixed spherical Fibonacci set)", kImplemented);
     integer({"-shgatherstep"}, &O::shGatherStep, Range::between(1, 8),

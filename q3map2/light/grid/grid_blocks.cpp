@@ -211,17 +211,21 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
 }
 
-void traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
-                             std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
-                             std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
-                             bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
-                             const BlockContributionFn& visit) {
+uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
+                                 std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
+                                 std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
+                                 bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
+                                 const BlockContributionFn& visit, std::span<const uint8_t> corners) {
     // Per (light, point): its unoccluded contribution and the index of its shadow ray (-1: none).
     struct Scratch {
         std::vector<std::optional<LightContribution>> pending;
         std::vector<int32_t> rayOf;
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
+        std::vector<uint8_t> settled;  // per ray: its answer is known without tracing it
+        std::vector<uint32_t> batch;   // rays of one traceBatch call, by index into `rays`
+        std::vector<ShadowRay> batchRays;
+        std::vector<Vec3> batchOut;
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -249,7 +253,63 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         }
     }
     s.transmission.assign(s.rays.size(), Vec3{1, 1, 1});  // without a scene nothing is traced
-    if (env.scene && !s.rays.empty()) env.scene->traceBatch(s.rays, s.transmission, coherent, axialRaysAlone);
+    s.settled.assign(corners.empty() ? 0 : s.rays.size(), 0);
+    // Traces the rays listed in s.batch as one batch (each ray gets the answer it gets alone).
+    auto traceListed = [&] {
+        s.batchRays.clear();
+        for (uint32_t r : s.batch) s.batchRays.push_back(s.rays[r]);
+        s.batchOut.assign(s.batchRays.size(), Vec3{1, 1, 1});
+        if (!s.batchRays.empty()) env.scene->traceBatch(s.batchRays, s.batchOut, coherent, axialRaysAlone);
+        for (size_t i = 0; i < s.batch.size(); ++i) {
+            s.transmission[s.batch[i]] = s.batchOut[i];
+            s.settled[s.batch[i]] = 1;
+        }
+    };
+    uint64_t skipped = 0;
+    bool anySettled = false;
+    if (env.scene && !s.rays.empty() && corners.size() == np) {
+        // The corner rays of every sun that has one from each corner, traced first.
+        std::vector<uint8_t> shares(nl, 0);
+        s.batch.clear();
+        for (size_t k = 0; k < nl; ++k) {
+            if (lights[candidates[k]].type != LightType::Sun) continue;
+            bool everyCorner = true;
+            for (size_t p = 0; p < np && everyCorner; ++p) everyCorner = !corners[p] || s.rayOf[k * np + p] >= 0;
+            if (!everyCorner) continue;
+            shares[k] = 1;
+            anySettled = true;
+            for (size_t p = 0; p < np; ++p)
+                if (corners[p]) s.batch.push_back(uint32_t(s.rayOf[k * np + p]));
+        }
+        traceListed();
+        // Where the corners agree on all open or all blocked, the points between take that answer.
+        for (size_t k = 0; k < nl; ++k) {
+            if (!shares[k]) continue;
+            bool open = true, blocked = true;
+            for (size_t p = 0; p < np; ++p) {
+                if (!corners[p]) continue;
+                const Vec3 t = s.transmission[size_t(s.rayOf[k * np + p])];
+                open = open && t == Vec3{1, 1, 1};
+                blocked = blocked && t == Vec3{};
+            }
+            if (!open && !blocked) continue;
+            for (size_t p = 0; p < np; ++p) {
+                const int32_t ray = s.rayOf[k * np + p];
+                if (ray < 0 || s.settled[size_t(ray)]) continue;
+                s.transmission[size_t(ray)] = open ? Vec3{1, 1, 1} : Vec3{};
+                s.settled[size_t(ray)] = 1;
+                ++skipped;
+            }
+        }
+    }
+    if (env.scene && !s.rays.empty() && !anySettled) {
+        env.scene->traceBatch(s.rays, s.transmission, coherent, axialRaysAlone);
+    } else if (env.scene && !s.rays.empty()) {
+        s.batch.clear();
+        for (size_t r = 0; r < s.rays.size(); ++r)
+            if (!s.settled[r]) s.batch.push_back(uint32_t(r));
+        traceListed();
+    }
     for (size_t p = 0; p < np; ++p)
         for (size_t k = 0; k < nl; ++k) {
             std::optional<LightContribution>& c = s.pending[k * np + p];
@@ -259,6 +319,7 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
             if (transmission) c->color *= *transmission;
             visit(p, candidates[k], *c, transmission);
         }
+    return skipped;
 }
 
 void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,

@@ -4,6 +4,8 @@
 // into one ambient + directed pair.
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <cmath>
 
 #include "grid_blocks.h"
@@ -50,6 +52,35 @@ void addAreaEmitter(sh::SH9Color& acc, const Light& light, Vec3 pushed, Vec3 tra
     const double radiance = double(light.add) / sh::kPi / 255.0;
     sh::addUniformPolygonIrradiance(acc, sh::sphericalPolygonMoments(corners),
                                     toRgb(light.color * transmission, radiance));
+}
+
+// Marks in `corners` (one per free point of `free`, the grid indices of the block's free points in
+// block order) the points at the corners of the block's lattice box; false when one of those
+// corners is in solid (its verdict is missing, so the block traces every ray).
+bool blockCorners(std::span<const GridBlockPoint> block, std::span<const size_t> free, std::array<int, 3> bounds,
+                  std::vector<uint8_t>& corners) {
+    const size_t bx = size_t(bounds[0]), by = size_t(bounds[1]);
+    auto latticeOf = [&](size_t i) { return std::array<size_t, 3>{i % bx, (i / bx) % by, i / (bx * by)}; };
+    std::array<size_t, 3> lo{SIZE_MAX, SIZE_MAX, SIZE_MAX}, hi{0, 0, 0};
+    for (const GridBlockPoint& p : block) {
+        const std::array<size_t, 3> c = latticeOf(p.index);
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], c[a]);
+            hi[a] = std::max(hi[a], c[a]);
+        }
+    }
+    size_t expected = 1;
+    for (int a = 0; a < 3; ++a) expected *= hi[a] > lo[a] ? 2 : 1;
+    corners.assign(free.size(), 0);
+    size_t found = 0;
+    for (size_t k = 0; k < free.size(); ++k) {
+        const std::array<size_t, 3> c = latticeOf(free[k]);
+        bool corner = true;
+        for (int a = 0; a < 3; ++a) corner = corner && (c[a] == lo[a] || c[a] == hi[a]);
+        corners[k] = corner ? 1 : 0;
+        found += corner ? 1 : 0;
+    }
+    return found == expected && free.size() > expected;
 }
 
 bool isBlack(const sh::GridPointSH& p) {  // every coefficient zero
@@ -106,10 +137,11 @@ void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, st
                             std::span<const int>(&cluster, 1), env);
 }
 
-void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
-                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
-                             std::span<const float> envelopes, std::span<const Vec3> origins,
-                             std::span<const int> clusters, const LightingEnv& env) {
+uint64_t addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                                 std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                                 std::span<const float> envelopes, std::span<const Vec3> origins,
+                                 std::span<const int> clusters, const LightingEnv& env,
+                                 std::span<const uint8_t> corners) {
     thread_local std::vector<float> ownEnvelopes;
     if (envelopes.empty()) {  // one probe's call: only the candidates' envelopes are read
         ownEnvelopes.assign(lights.size(), 0.0f);
@@ -118,14 +150,15 @@ void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light
     }
     // One stream per block, flagged incoherent: the rays spread from the probes towards every light
     // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
-    traceBlockContributions(
+    return traceBlockContributions(
         lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false, false,
         [](const Light& light) { return light.style == 0; },  // IBSP grids hold style 0 only (styled light is switchable)
         [&](size_t p, uint32_t lightIndex, const LightContribution& c, const Vec3* transmission) {
             const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
             if (t == Vec3{}) return;
             projectContribution(accs[p], lights[lightIndex], origins[p], c, t, env.settings, false);
-        });
+        },
+        corners);
 }
 
 void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {
@@ -240,6 +273,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
         grid.setPoint(i, sh::toGridPoint(sh::scale(acc, gridScale)));
     };
     const GridLattice lattice{layout.bounds, layout.mins, layout.size};
+    std::atomic<uint64_t> sharedSunRays{0};
     if (ctx.options.cheapGrid) {
         // -cheapgrid stops once the point is white, so each light's ray is traced before the next.
         auto lightPoint = [&](size_t i, Vec3 latticePoint, const BlockLights& reaching) {
@@ -269,6 +303,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
             thread_local std::vector<Vec3> at;
             thread_local std::vector<int> clusters;
             thread_local std::vector<sh::SH9Color> accs;
+            thread_local std::vector<uint8_t> corners;
             index.clear();
             at.clear();
             clusters.clear();
@@ -279,8 +314,10 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
                     clusters.push_back(placed->cluster);
                 }
             accs.assign(index.size(), sh::SH9Color{});
-            addLightsToGridPointsSH(accs, ctx.lights, reaching.candidates, reaching.clearOfSolid, envelopes, at,
-                                    clusters, env);
+            const bool share = !ctx.options.shExact && blockCorners(blockPoints, index, layout.bounds, corners);
+            sharedSunRays += addLightsToGridPointsSH(accs, ctx.lights, reaching.candidates, reaching.clearOfSolid,
+                                                     envelopes, at, clusters, env,
+                                                     share ? std::span<const uint8_t>(corners) : std::span<const uint8_t>());
             for (size_t k = 0; k < index.size(); ++k) store(index[k], accs[k]);
         };
         lightGridBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,
@@ -291,6 +328,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
     ShTraceStats stats;
     stats.points = numPoints;
     stats.bounds = layout.bounds;
+    stats.sharedSunRays = sharedSunRays.load();
     for (size_t i = 0; i < numPoints; ++i) {
         stats.nudged += nudged[i];
         stats.inSolid += solid[i];
@@ -304,7 +342,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
     for (size_t i = 0; i < numPoints; ++i) stats.blackAfterFill += isBlack(grid.point(i)) ? 1 : 0;
     log.info(strCat("SH grid: ", stats.nudged, " points nudged out of solid, ", stats.inSolid, " in solid, ",
                     stats.filled, " filled from neighbours, ", stats.blackBeforeFill, " black before the fill, ",
-                    stats.blackAfterFill, " after"));
+                    stats.blackAfterFill, " after, ", stats.sharedSunRays, " sun rays answered by their block's corners"));
     if (statsOut) *statsOut = std::move(stats);
     return grid;
 }

@@ -74,6 +74,7 @@ struct ShTraceStats {
     uint64_t blackAfterFill = 0;  // all-zero points at the end
     std::vector<uint8_t> solid;   // per point: 1 = stayed in solid
     std::vector<Vec3> origins;    // per point, with -shgather only: where it was lit (lattice or nudged position)
+    uint64_t sharedSunRays = 0;   // sun rays answered by their block's corners (none with -shexact)
 };
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
@@ -92,11 +93,14 @@ void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, st
 // The same for several free points (`origins`, `clusters`, one accumulator each), the shadow rays
 // of all of them traced as one batch; each point still adds its lights in light order.
 // `clearOfSolid[k]`, when given, says that candidate k's rays from every point meet no structural
-// solid; `envelopes`, when given, holds lightEnvelope of every light.
-void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
-                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
-                             std::span<const float> envelopes, std::span<const Vec3> origins,
-                             std::span<const int> clusters, const LightingEnv& env);
+// solid; `envelopes`, when given, holds lightEnvelope of every light. `corners`, when given, marks
+// the points at the block's corners and lets suns share their visibility (traceBlockContributions).
+// Returns the number of rays not traced.
+uint64_t addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                                 std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                                 std::span<const float> envelopes, std::span<const Vec3> origins,
+                                 std::span<const int> clusters, const LightingEnv& env,
+                                 std::span<const uint8_t> corners = {});
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
 // adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform

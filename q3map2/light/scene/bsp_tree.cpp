@@ -7,17 +7,6 @@
 
 namespace q3::light {
 
-// CompactNode::axis for a plane normal: 0..2 when it is exactly +1 on that axis and 0 elsewhere,
-// 3..5 for -1, 6 for any other.
-static int32_t axialPlaneCode(const float normal[3]) {
-    for (int k = 0; k < 3; ++k) {
-        const bool rest = normal[(k + 1) % 3] == 0.0f && normal[(k + 2) % 3] == 0.0f;
-        if (rest && normal[k] == 1.0f) return k;
-        if (rest && normal[k] == -1.0f) return k + 3;
-    }
-    return 6;
-}
-
 bool shaderIsTranslucent(const bsp::Shader& shader) {
     using namespace contents;
     // The content flags the C_TRANSLUCENT surfaceparms of q3map2's quake3 game table set.
@@ -89,236 +78,34 @@ void BspTree::buildLeafSolids() {
     leafSolidStart_[numLeafs] = uint32_t(leafSolids_.size());
 }
 
-// One step of q3map2's TraceLine at a node: a segment whose ends lie at `front` and `back` from the
-// plane stays on one side within TRACE_ON_EPSILON (`split` false, `side` 0 front, 1 back), or is
-// split at `frac`, its start's side (`side`) walked first.
-struct SegmentStep {
-    bool split = false;
-    int side = 0;
-    float frac = 0;
-};
-
-static SegmentStep segmentStep(double front, double back) {
-    constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
-    if (front >= -kOnEpsilon && back >= -kOnEpsilon) return {false, 0, 0};
-    if (front < kOnEpsilon && back < kOnEpsilon) return {false, 1, 0};
-    return {true, front < 0 ? 1 : 0, float(front / (front - back))};
-}
-
 static double planeDistance(const bsp::Plane& plane, Vec3 p) {
     return double(plane.normal[0]) * p.x + double(plane.normal[1]) * p.y + double(plane.normal[2]) * p.z -
            double(plane.dist);
 }
 
-// A point as the compact walks read it: coordinates and their negations, exact in double.
-struct WalkPoint {
-    double v[6];
-    explicit WalkPoint(Vec3 p) : v{p.x, p.y, p.z, -double(p.x), -double(p.y), -double(p.z)} {}
-};
-
-// The same value as planeDistance for the node's plane (see CompactNode::axis).
-template <class Node>
-static inline double nodeDistance(const Node& n, const WalkPoint& p) {
-    if (n.axis < 6) return p.v[n.axis] - n.dist;
-    return double(n.normal[0]) * p.v[0] + double(n.normal[1]) * p.v[1] + double(n.normal[2]) * p.v[2] - n.dist;
-}
-
 void BspTree::buildCompactTree() {
-    const std::vector<bsp::Node>& nodes = bsp_.nodes;
+    // The compact walks rely on a proper tree; anything else keeps the reference walks.
+    if (properTreeOrder(bsp_).empty()) return;
     const size_t numLeafs = bsp_.leafs.size();
-    if (nodes.empty() || nodes.size() > size_t(INT32_MAX) || numLeafs > size_t(INT32_MAX)) return;
-    // The compact walks rely on a proper tree: every reference in range, every node reached once
-    // from the root (no cycles, no shared subtrees) and paths short enough for fixed stacks.
-    // Anything else keeps the reference walks.
-    std::vector<int32_t> order{0};  // breadth first from the root
-    std::vector<int32_t> depth(nodes.size(), -1);
-    depth[0] = 0;
-    for (size_t i = 0; i < order.size(); ++i) {
-        const bsp::Node& n = nodes[size_t(order[i])];
-        if (n.planeNum < 0 || size_t(n.planeNum) >= bsp_.planes.size()) return;
-        for (const int32_t child : n.children) {
-            if (child < 0) {
-                if (size_t(-(int64_t(child) + 1)) >= numLeafs) return;
-                continue;
-            }
-            if (size_t(child) >= nodes.size() || depth[size_t(child)] >= 0) return;
-            depth[size_t(child)] = depth[size_t(order[i])] + 1;
-            if (depth[size_t(child)] >= kMaxCompactDepth) return;
-            order.push_back(child);
-        }
-    }
-
     leafCluster_.resize(numLeafs);
-    for (size_t i = 0; i < numLeafs; ++i) leafCluster_[i] = bsp_.leafs[i].cluster;
-    // What each subtree holds, children before parents (they follow their parent in `order`); the
-    // segment walk's solid test is a leaf outside every cluster.
-    constexpr uint8_t kHasOpen = 1, kHasSolid = 2, kMixed = 3;
-    std::vector<uint8_t> kinds(nodes.size(), 0);
-    auto childKind = [&](int32_t child) -> uint8_t {
-        if (child >= 0) return kinds[size_t(child)];
-        return leafCluster_[size_t(-(int64_t(child) + 1))] == -1 ? kHasSolid : kHasOpen;
-    };
-    for (size_t i = order.size(); i-- > 0;) {
-        const bsp::Node& n = nodes[size_t(order[i])];
-        kinds[size_t(order[i])] = childKind(n.children[0]) | childKind(n.children[1]);
+    std::vector<uint8_t> outside(numLeafs);
+    for (size_t i = 0; i < numLeafs; ++i) {
+        leafCluster_[i] = bsp_.leafs[i].cluster;
+        outside[i] = leafCluster_[i] == -1 ? 1 : 0;
     }
-
-    // Depth-first copies of the tree from the root: all of it for point walks, only the mixed
-    // subtrees for segment walks. `keep` says which child nodes are copied; `leafRef` what a child
-    // that is not copied becomes.
-    auto copyTree = [&](std::vector<CompactNode>& out, auto keep, auto leafRef) {
-        std::vector<int32_t> newIndex(nodes.size(), -1);
-        std::vector<int32_t> stack{0};
-        while (!stack.empty()) {
-            const int32_t index = stack.back();
-            stack.pop_back();
-            newIndex[size_t(index)] = int32_t(out.size());
-            const bsp::Node& n = nodes[size_t(index)];
-            const bsp::Plane& plane = bsp_.planes[size_t(n.planeNum)];
-            CompactNode c{plane.dist, {plane.normal[0], plane.normal[1], plane.normal[2]}, axialPlaneCode(plane.normal),
-                          {n.children[0], n.children[1]}};
-            out.push_back(c);
-            for (int side = 1; side >= 0; --side)
-                if (keep(n.children[side])) stack.push_back(n.children[side]);
-        }
-        for (CompactNode& c : out)
-            for (int32_t& child : c.children) child = keep(child) ? newIndex[size_t(child)] : leafRef(child);
-    };
-    copyTree(compact_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
-    const uint8_t rootKind = kinds[0];
-    segmentRoot_ = rootKind == kHasSolid ? kSolidSubtree : rootKind == kHasOpen ? kOpenSubtree : 0;
-    if (rootKind == kMixed) {
-        copyTree(
-            segmentTree_, [&](int32_t child) { return child >= 0 && kinds[size_t(child)] == kMixed; },
-            [&](int32_t child) { return childKind(child) == kHasSolid ? kSolidSubtree : kOpenSubtree; });
-    }
+    compact_ = compactCopy(bsp_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
+    segmentTree_ = SolidSegmentTree(bsp_, outside);
 }
 
 bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
     if (bsp_.nodes.empty()) return false;
-    // Bounded coordinates keep every midpoint finite, where the axial shortcut and the full dot
-    // product agree (0 * inf would not); anything else takes the reference walk.
-    constexpr float kMaxCoord = 1e30f;
-    const bool bounded = std::fabs(from.x) <= kMaxCoord && std::fabs(from.y) <= kMaxCoord &&
-                         std::fabs(from.z) <= kMaxCoord && std::fabs(to.x) <= kMaxCoord &&
-                         std::fabs(to.y) <= kMaxCoord && std::fabs(to.z) <= kMaxCoord;
-    if (compact_.empty() || !bounded) return referenceSegmentCrossesSolid(from, to);
-    // Far sides still to walk. A push happens at most once per node of the current path, so the
-    // validated depth bounds the stack. The answer is a plain "any solid leaf", so the order in
-    // which sides are walked only decides how soon a hit ends the walk.
-    // Plain floats, not Vec3: the array must not be zero-filled on every call.
-    struct Pending {
-        int32_t node;
-        float start[3], end[3];
-    };
-    Pending stack[kMaxCompactDepth];
-    int top = 0;
-    int32_t node = segmentRoot_;
-    Vec3 start = from, end = to;
-    WalkPoint s(start), e(end);
-    while (true) {
-        if (node < 0) {
-            if (node == kSolidSubtree) return true;
-            if (top == 0) return false;
-            const Pending& next = stack[--top];
-            node = next.node;
-            start = Vec3::fromArray(next.start);
-            end = Vec3::fromArray(next.end);
-            s = WalkPoint(start);
-            e = WalkPoint(end);
-            continue;
-        }
-        const CompactNode& n = segmentTree_[size_t(node)];
-        const SegmentStep step = segmentStep(nodeDistance(n, s), nodeDistance(n, e));
-        if (!step.split) {
-            node = n.children[step.side];
-        } else {
-            const Vec3 mid = start + (end - start) * step.frac;
-            stack[top++] = Pending{n.children[1 - step.side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
-            node = n.children[step.side];
-            end = mid;
-            e = WalkPoint(mid);
-        }
-    }
+    if (compact_.empty() || !withinWalkRange(from, to)) return referenceSegmentCrossesSolid(from, to);
+    return segmentTree_.crosses(from, to);
 }
 
 bool BspTree::hullClearOfSolid(std::span<const Vec3> points) const {
     if (bsp_.nodes.empty()) return true;
-    if (compact_.empty() || points.empty()) return false;
-    if (segmentRoot_ == kOpenSubtree) return true;
-    if (segmentRoot_ == kSolidSubtree) return false;
-    // The points' box gives an axial plane's distances at once; others take every point.
-    double boxLo[3], boxHi[3];
-    for (int k = 0; k < 3; ++k) boxLo[k] = boxHi[k] = points[0][k];
-    for (const Vec3 p : points) {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
-        for (int k = 0; k < 3; ++k) {
-            boxLo[k] = std::min(boxLo[k], double(p[k]));
-            boxHi[k] = std::max(boxHi[k], double(p[k]));
-        }
-    }
-    double extent = 0;
-    for (int k = 0; k < 3; ++k) extent = std::max({extent, std::fabs(boxLo[k]), std::fabs(boxHi[k])});
-    if (extent > 1e30) return false;
-    // A walk splits its segment at float midpoints, each of which may stray from the hull by under
-    // 1e-6 of the extent (a few roundings of float coordinates): the margin covers chains of such
-    // splits far longer than real paths take. It stays below the 0.1 on-plane epsilon within 9000
-    // units, so ray starts lying on a wall still walk only its open side, as their segments do.
-    const double margin = 0.01 + 1e-5 * extent;
-    constexpr double kOnEpsilon = 0.1;  // as segmentStep
-    constexpr int kNodeBudget = 192;
-    int32_t stack[kMaxCompactDepth];
-    int top = 0, visited = 0;
-    int32_t node = segmentRoot_;
-    while (true) {
-        if (node == kSolidSubtree || ++visited > kNodeBudget) return false;
-        if (node < 0) {
-            if (top == 0) return true;
-            node = stack[--top];
-            continue;
-        }
-        const CompactNode& n = segmentTree_[size_t(node)];
-        double lo, hi;
-        if (n.axis < 3) {
-            lo = boxLo[n.axis] - n.dist;
-            hi = boxHi[n.axis] - n.dist;
-        } else if (n.axis < 6) {
-            lo = -boxHi[n.axis - 3] - n.dist;
-            hi = -boxLo[n.axis - 3] - n.dist;
-        } else {
-            // The box's nearest and farthest corners first; only a box the plane cuts needs the points.
-            lo = hi = -n.dist;
-            for (int k = 0; k < 3; ++k) {
-                const double w = n.normal[k];
-                lo += w * (w >= 0 ? boxLo[k] : boxHi[k]);
-                hi += w * (w >= 0 ? boxHi[k] : boxLo[k]);
-            }
-            if (lo >= -kOnEpsilon + margin || hi < -kOnEpsilon - margin) {
-                node = n.children[lo >= -kOnEpsilon + margin ? 0 : 1];
-                continue;
-            }
-            lo = std::numeric_limits<double>::infinity();
-            hi = -lo;
-            for (const Vec3 p : points) {
-                const double d =
-                    double(n.normal[0]) * p.x + double(n.normal[1]) * p.y + double(n.normal[2]) * p.z - n.dist;
-                lo = std::min(lo, d);
-                hi = std::max(hi, d);
-            }
-        }
-        // A segment goes front when both ends lie at -0.1 or more, back when that fails and both
-        // lie below 0.1: the whole hull goes back only when it lies below -0.1.
-        if (lo >= -kOnEpsilon + margin) {
-            node = n.children[0];
-        } else if (hi < -kOnEpsilon - margin) {
-            node = n.children[1];
-        } else {
-            // Both sides; the pending side waits on a stack no deeper than the path.
-            if (top == kMaxCompactDepth) return false;
-            stack[top++] = n.children[1];
-            node = n.children[0];
-        }
-    }
+    return segmentTree_.hullClear(points);
 }
 
 bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {

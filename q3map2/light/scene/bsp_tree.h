@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bspfile.h"
+#include "solid_segment_tree.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -107,22 +108,6 @@ private:
     int referenceLeafForPoint(Vec3 point) const;
     bool referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const;
 
-    // A node with its plane inline, 32 bytes, stored depth-first (front child first) so a walk
-    // mostly moves forward in memory. Walks keep a point as the doubles {x, y, z, -x, -y, -z}:
-    // `axis` 0..5 marks a plane whose normal is exactly +1 (0..2) or -1 (3..5) on one axis and 0
-    // elsewhere, whose distance is then p[axis] - dist, bit-identical to the full dot product in
-    // double (the other products are zeros and the sums exact); 6 marks any other plane.
-    struct CompactNode {
-        double dist;
-        float normal[3];
-        int32_t axis;
-        int32_t children[2];  // >= 0 node, < 0 leaf -1 - child (validated); segment nodes: see below
-    };
-    // The segment walk's tree leaves out every subtree that is all open (no leaf outside every
-    // cluster) or all solid: its children are nodes or these, and the walk knows the answer there.
-    static constexpr int32_t kOpenSubtree = -1, kSolidSubtree = -2;
-    static constexpr int kMaxCompactDepth = 256;  // walk stacks are fixed arrays of this size
-
     void buildCompactTree();
     void buildLeafSolids();
     int compactLeafFrom(int node, Vec3 point) const;
@@ -132,9 +117,8 @@ private:
     std::vector<uint8_t> opaque_;  // per brush
     int numClusters_ = 0;
     int bytesPerCluster_ = 0;
-    std::vector<CompactNode> compact_;      // empty: use the reference walks
-    std::vector<CompactNode> segmentTree_;  // empty: segmentRoot_ is a sentinel
-    int32_t segmentRoot_ = kOpenSubtree;
+    std::vector<CompactNode> compact_;  // the whole node tree for point walks; empty: use the reference walks
+    SolidSegmentTree segmentTree_;      // segment walks against leaves outside every cluster
     std::vector<int32_t> leafCluster_;  // per leaf, for the compact walks
     // The opaque brushes listed in each leaf with their side planes inline, in the leaf's order, for
     // clusterInLeaf's point-in-brush tests without chasing leaf brush, brush and side indices.

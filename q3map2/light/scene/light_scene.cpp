@@ -193,6 +193,7 @@ void buildScene(LightContext& ctx) {
     std::vector<SceneSurface> pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents);
     auto skySolid = std::make_shared<const SkyRaySolid>(ctx.bsp, contents);
     options.skySolidBetween = [skySolid](Vec3 from, Vec3 to) { return skySolid->stops(from, to); };
+    options.skyHullClear = [skySolid](std::span<const Vec3> points) { return skySolid->hullClear(points); };
     ctx.scene = std::make_unique<TraceScene>(pieces, options);
 }
 

@@ -44,9 +44,23 @@ SkyRaySolid::SkyRaySolid(const bsp::Bsp& bsp, const TraceLeafContents& contents)
         }
         nodeHoldsPieces_[size_t(*it)] = holds;
     }
+    std::vector<uint8_t> openBranch(nodeHoldsPieces_.size());
+    for (size_t n = 0; n < openBranch.size(); ++n) openBranch[n] = nodeHoldsPieces_[n] ? 0 : 1;
+    compact_ = SolidSegmentTree(bsp, leafStops_, openBranch);
 }
 
 bool SkyRaySolid::stops(Vec3 from, Vec3 to) const {
+    if (bsp_.nodes.empty()) return false;
+    if (!compact_.usable() || !withinWalkRange(from, to)) return stopsByPlainWalk(from, to);
+    return compact_.crosses(from, to);
+}
+
+bool SkyRaySolid::hullClear(std::span<const Vec3> points) const {
+    if (bsp_.nodes.empty()) return true;
+    return compact_.hullClear(points);
+}
+
+bool SkyRaySolid::stopsByPlainWalk(Vec3 from, Vec3 to) const {
     if (bsp_.nodes.empty()) return false;
     return stopsBelow(0, from, to, 0);
 }

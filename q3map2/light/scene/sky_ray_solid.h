@@ -9,7 +9,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <span>
+
 #include "bspfile.h"
+#include "solid_segment_tree.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -28,6 +31,12 @@ public:
     // leaf, front to back with q3map2's 0.1-unit on-plane epsilon, skipping branches without
     // casters. False without a node tree.
     bool stops(Vec3 from, Vec3 to) const;
+    // True when no segment inside the convex hull of `points` can stop as stops() walks it (see
+    // SolidSegmentTree::hullClear); false when unsure.
+    bool hullClear(std::span<const Vec3> points) const;
+    // The plain walk over the BSP lumps that the compact one must match answer for answer (used for
+    // trees that are not proper trees, and by the tests).
+    bool stopsByPlainWalk(Vec3 from, Vec3 to) const;
 
 private:
     bool stopsBelow(int32_t node, Vec3 start, Vec3 end, int depth) const;
@@ -35,6 +44,7 @@ private:
     const bsp::Bsp& bsp_;
     std::vector<uint8_t> nodeHoldsPieces_;  // per node: some leaf below it holds a caster
     std::vector<uint8_t> leafStops_;        // per leaf: outside every cluster and not subdivided
+    SolidSegmentTree compact_;              // the same rule for the compact walks
 };
 
 }  // namespace q3::light

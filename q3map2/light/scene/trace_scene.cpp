@@ -177,7 +177,8 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     : embree_(std::make_unique<EmbreeState>()),
       solidBetween_(options.solidBetween),
       skySolidBetween_(options.skySolidBetween),
-      hullClearOfSolid_(options.hullClearOfSolid) {
+      hullClearOfSolid_(options.hullClearOfSolid),
+      skyHullClear_(options.skyHullClear ? options.skyHullClear : options.hullClearOfSolid) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
@@ -464,7 +465,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
         const ShadowRay& r = rays[occlusionBuffer[k].id];
         if (occlusionBuffer[k].tfar >= 0 && !r.clearOfSolid) (r.toSky ? toSky : toPoint).add(r.from, segmentEnd(k));
     }
-    const bool skyClear = toSky.clear(hullClearOfSolid_), pointClear = toPoint.clear(hullClearOfSolid_);
+    const bool skyClear = toSky.clear(skyHullClear_), pointClear = toPoint.clear(hullClearOfSolid_);
     for (size_t k = 0; k < numOcclusion; ++k) {
         if (occlusionBuffer[k].tfar < 0) continue;
         const ShadowRay& r = rays[occlusionBuffer[k].id];

@@ -53,6 +53,8 @@ struct TraceSceneOptions {
     // Optional shortcut for many rays: true when no segment inside the convex hull of the points
     // (at most BspTree::kMaxHullPoints) can enter solid, so solidBetween need not be asked for them.
     std::function<bool(std::span<const Vec3> points)> hullClearOfSolid;
+    // The same shortcut for sun rays under skySolidBetween's rule. Empty: hullClearOfSolid.
+    std::function<bool(std::span<const Vec3> points)> skyHullClear;
 };
 
 // Every shadow group: the ray mask of rays that any caster may block.
@@ -156,6 +158,7 @@ private:
     std::function<bool(Vec3, Vec3)> solidBetween_;
     std::function<bool(Vec3, Vec3)> skySolidBetween_;
     std::function<bool(std::span<const Vec3>)> hullClearOfSolid_;
+    std::function<bool(std::span<const Vec3>)> skyHullClear_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {
