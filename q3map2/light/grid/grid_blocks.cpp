@@ -226,6 +226,7 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
         std::vector<uint32_t> batch;   // rays of one traceBatch call, by index into `rays`
         std::vector<ShadowRay> batchRays;
         std::vector<Vec3> batchOut;
+        std::vector<uint8_t> shares;   // per candidate: a sun whose corner rays were traced first
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -269,14 +270,14 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
     bool anySettled = false;
     if (env.scene && !s.rays.empty() && corners.size() == np) {
         // The corner rays of every sun that has one from each corner, traced first.
-        std::vector<uint8_t> shares(nl, 0);
+        s.shares.assign(nl, 0);
         s.batch.clear();
         for (size_t k = 0; k < nl; ++k) {
             if (lights[candidates[k]].type != LightType::Sun) continue;
             bool everyCorner = true;
             for (size_t p = 0; p < np && everyCorner; ++p) everyCorner = !corners[p] || s.rayOf[k * np + p] >= 0;
             if (!everyCorner) continue;
-            shares[k] = 1;
+            s.shares[k] = 1;
             anySettled = true;
             for (size_t p = 0; p < np; ++p)
                 if (corners[p]) s.batch.push_back(uint32_t(s.rayOf[k * np + p]));
@@ -284,7 +285,7 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
         traceListed();
         // Where the corners agree on all open or all blocked, the points between take that answer.
         for (size_t k = 0; k < nl; ++k) {
-            if (!shares[k]) continue;
+            if (!s.shares[k]) continue;
             bool open = true, blocked = true;
             for (size_t p = 0; p < np; ++p) {
                 if (!corners[p]) continue;

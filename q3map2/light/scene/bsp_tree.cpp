@@ -84,17 +84,16 @@ static double planeDistance(const bsp::Plane& plane, Vec3 p) {
 }
 
 void BspTree::buildCompactTree() {
-    // The compact walks rely on a proper tree; anything else keeps the reference walks.
-    if (properTreeOrder(bsp_).empty()) return;
     const size_t numLeafs = bsp_.leafs.size();
-    leafCluster_.resize(numLeafs);
     std::vector<uint8_t> outside(numLeafs);
-    for (size_t i = 0; i < numLeafs; ++i) {
-        leafCluster_[i] = bsp_.leafs[i].cluster;
-        outside[i] = leafCluster_[i] == -1 ? 1 : 0;
-    }
-    compact_ = compactCopy(bsp_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
+    for (size_t i = 0; i < numLeafs; ++i) outside[i] = bsp_.leafs[i].cluster == -1 ? 1 : 0;
+    // The compact walks rely on a proper tree (the segment tree checks it); anything else keeps the
+    // reference walks.
     segmentTree_ = SolidSegmentTree(bsp_, outside);
+    if (!segmentTree_.usable()) return;
+    leafCluster_.resize(numLeafs);
+    for (size_t i = 0; i < numLeafs; ++i) leafCluster_[i] = bsp_.leafs[i].cluster;
+    compact_ = compactCopy(bsp_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
 }
 
 bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {

@@ -7,9 +7,8 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
-
 #include <span>
+#include <vector>
 
 #include "bspfile.h"
 #include "solid_segment_tree.h"
