@@ -139,7 +139,7 @@ struct LightOptions {
     bool shGather = false;          // -shgather: add gathered indirect light to the SH grid
     int shGatherSamples = 64;       // -shgathersamples: rays per probe (docs/sh-for-mappers.md)
     int shGatherStep = 2;           // -shgatherstep: probes that gather, every Nth per axis
-    bool shExact = false;           // -shexact: every probe traces its own ray to every sun
+    bool shExact = false;           // -shexact: every probe lights every light itself (no block sharing)
 };
 
 const cli::OptionTable<LightOptions>& lightOptionTable();

@@ -215,18 +215,14 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
                                  std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
                                  std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
                                  bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
-                                 const BlockContributionFn& visit, std::span<const uint8_t> corners) {
+                                 const BlockContributionFn& visit, const BlockSharing* sharing) {
     // Per (light, point): its unoccluded contribution and the index of its shadow ray (-1: none).
     struct Scratch {
         std::vector<std::optional<LightContribution>> pending;
         std::vector<int32_t> rayOf;
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
-        std::vector<uint8_t> settled;  // per ray: its answer is known without tracing it
-        std::vector<uint32_t> batch;   // rays of one traceBatch call, by index into `rays`
-        std::vector<ShadowRay> batchRays;
-        std::vector<Vec3> batchOut;
-        std::vector<uint8_t> shares;   // per candidate: a sun whose corner rays were traced first
+        std::vector<uint8_t> shared;  // per candidate
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -237,79 +233,68 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
     deferred.deferredRays = env.scene ? &s.rays : nullptr;
     LightingEnv deferredClear = deferred;
     deferredClear.clearOfSolid = true;
-    for (size_t k = 0; k < nl; ++k) {
-        const Light& light = lights[candidates[k]];
-        if (!includes(light)) continue;
+    auto light = [&](size_t k, size_t p) {
+        const size_t before = s.rays.size();
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
-        for (size_t p = 0; p < np; ++p) {
-            const size_t before = s.rays.size();
-            std::optional<LightContribution> c =
-                lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
-            if (!c) {
-                s.rays.resize(before);
-                continue;
-            }
-            s.pending[k * np + p] = c;
-            if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
+        std::optional<LightContribution> c =
+            lightToGridPoint(lights[candidates[k]], origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
+        if (!c) {
+            s.rays.resize(before);
+            return;
         }
-    }
-    s.transmission.assign(s.rays.size(), Vec3{1, 1, 1});  // without a scene nothing is traced
-    s.settled.assign(corners.empty() ? 0 : s.rays.size(), 0);
-    // Traces the rays listed in s.batch as one batch (each ray gets the answer it gets alone).
-    auto traceListed = [&] {
-        s.batchRays.clear();
-        for (uint32_t r : s.batch) s.batchRays.push_back(s.rays[r]);
-        s.batchOut.assign(s.batchRays.size(), Vec3{1, 1, 1});
-        if (!s.batchRays.empty()) env.scene->traceBatch(s.batchRays, s.batchOut, coherent, axialRaysAlone);
-        for (size_t i = 0; i < s.batch.size(); ++i) {
-            s.transmission[s.batch[i]] = s.batchOut[i];
-            s.settled[s.batch[i]] = 1;
-        }
+        s.pending[k * np + p] = c;
+        if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
     };
+    // Traces the rays from `first` on (without a scene nothing is traced: all open).
+    auto traceFrom = [&](size_t first) {
+        s.transmission.resize(s.rays.size(), Vec3{1, 1, 1});
+        if (!env.scene || first >= s.rays.size()) return;
+        env.scene->traceBatch(std::span<const ShadowRay>(s.rays).subspan(first),
+                              std::span<Vec3>(s.transmission).subspan(first), coherent, axialRaysAlone);
+    };
+    s.transmission.clear();
+    const bool share = sharing && env.scene && sharing->corners.size() == np && sharing->far.size() == nl;
     uint64_t skipped = 0;
-    bool anySettled = false;
-    if (env.scene && !s.rays.empty() && corners.size() == np) {
-        // The corner rays of every sun that has one from each corner, traced first.
-        s.shares.assign(nl, 0);
-        s.batch.clear();
+    if (!share) {
+        for (size_t k = 0; k < nl; ++k)
+            if (includes(lights[candidates[k]]))
+                for (size_t p = 0; p < np; ++p) light(k, p);
+        traceFrom(0);
+    } else {
+        const std::span<const uint8_t> corners = sharing->corners;
+        size_t cornerCount = 0;
+        for (uint8_t c : corners) cornerCount += c ? 1 : 0;
+        s.shared.assign(nl, 0);
+        for (size_t k = 0; k < nl; ++k)
+            if (includes(lights[candidates[k]]))
+                for (size_t p = 0; p < np; ++p)
+                    if (corners[p]) light(k, p);
+        traceFrom(0);
+        const size_t cornerRays = s.rays.size();
         for (size_t k = 0; k < nl; ++k) {
-            if (lights[candidates[k]].type != LightType::Sun) continue;
-            bool everyCorner = true;
-            for (size_t p = 0; p < np && everyCorner; ++p) everyCorner = !corners[p] || s.rayOf[k * np + p] >= 0;
-            if (!everyCorner) continue;
-            s.shares[k] = 1;
-            anySettled = true;
-            for (size_t p = 0; p < np; ++p)
-                if (corners[p]) s.batch.push_back(uint32_t(s.rayOf[k * np + p]));
-        }
-        traceListed();
-        // Where the corners agree on all open or all blocked, the points between take that answer.
-        for (size_t k = 0; k < nl; ++k) {
-            if (!s.shares[k]) continue;
-            bool open = true, blocked = true;
-            for (size_t p = 0; p < np; ++p) {
+            if (!includes(lights[candidates[k]])) continue;
+            // Far lights change little over the block unless their rays do: shared when every
+            // corner's ray is open, or every one blocked, or no corner gets any light although
+            // every corner may see the light (it is too faint or behind its emitter everywhere).
+            const bool far = sharing->far[k] != 0;
+            bool open = far, blocked = far, dark = far;
+            for (size_t p = 0; p < np && (open || blocked || dark); ++p) {
                 if (!corners[p]) continue;
-                const Vec3 t = s.transmission[size_t(s.rayOf[k * np + p])];
+                const int32_t ray = s.rayOf[k * np + p];
+                const Vec3 t = ray >= 0 ? s.transmission[size_t(ray)] : Vec3{0.5f, 0.5f, 0.5f};
                 open = open && t == Vec3{1, 1, 1};
                 blocked = blocked && t == Vec3{};
+                dark = dark && !s.pending[k * np + p] && !pvsCulled(lights[candidates[k]], clusters[p], env);
             }
-            if (!open && !blocked) continue;
-            for (size_t p = 0; p < np; ++p) {
-                const int32_t ray = s.rayOf[k * np + p];
-                if (ray < 0 || s.settled[size_t(ray)]) continue;
-                s.transmission[size_t(ray)] = open ? Vec3{1, 1, 1} : Vec3{};
-                s.settled[size_t(ray)] = 1;
-                ++skipped;
+            if (open || blocked || dark) {
+                s.shared[k] = 1;
+                skipped += np - cornerCount;
+                continue;
             }
+            for (size_t p = 0; p < np; ++p)
+                if (!corners[p]) light(k, p);
         }
-    }
-    if (env.scene && !s.rays.empty() && !anySettled) {
-        env.scene->traceBatch(s.rays, s.transmission, coherent, axialRaysAlone);
-    } else if (env.scene && !s.rays.empty()) {
-        s.batch.clear();
-        for (size_t r = 0; r < s.rays.size(); ++r)
-            if (!s.settled[r]) s.batch.push_back(uint32_t(r));
-        traceListed();
+        traceFrom(cornerRays);
     }
     for (size_t p = 0; p < np; ++p)
         for (size_t k = 0; k < nl; ++k) {
@@ -318,7 +303,7 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
             const int32_t ray = s.rayOf[k * np + p];
             const Vec3* transmission = ray >= 0 ? &s.transmission[size_t(ray)] : nullptr;
             if (transmission) c->color *= *transmission;
-            visit(p, candidates[k], *c, transmission);
+            (share && s.shared[k] ? sharing->visitShared : visit)(p, candidates[k], *c, transmission);
         }
     return skipped;
 }

@@ -135,20 +135,28 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
 // visit(point, lightIndex, contribution, transmission) for every light that reaches it:
 // contribution.color already multiplied by the ray's transmission (nullptr: no ray was traced).
 // `includes(light)` false leaves a light out; `envelopes` holds lightEnvelope of every light.
-//
-// `corners` (empty: every ray is traced) marks the points at the corners of the block's lattice
-// box, all of them free, for sun visibility shared across the block: a sun whose rays from every
-// corner come back all open or all blocked is taken to be the same from the points between them,
-// whose own rays are not traced. Suns are parallel rays, so an occluder hides a corner unless it is
-// smaller than the block; the SH grid measures what that costs against every ray traced
-// (-shexact). Returns the number of rays not traced.
 using BlockContributionFn =
     std::function<void(size_t point, uint32_t lightIndex, const LightContribution& contribution,
                        const Vec3* transmission)>;
+
+// Light shared across a block (see traceBlockContributions): the block's corner points light it
+// for the points between them.
+struct BlockSharing {
+    std::span<const uint8_t> corners;  // per point: at a corner of the block's lattice box (all free)
+    std::span<const uint8_t> far;      // per candidate: far enough that its light varies smoothly over the block
+    BlockContributionFn visitShared;   // a shared light at a corner point, called instead of visit
+};
+
+// With `sharing` (and a scene), every light is first lit and traced at the corner points. A far
+// light that reaches every corner with a ray, all of them open or all blocked, is shared: the
+// corners report it to sharing->visitShared, and the points between them neither light nor trace
+// it (the caller interpolates the corners). Occluders smaller than the block can hide from the
+// corners; the SH grid measures what that costs against every pair lit (-shexact). Returns the
+// number of (light, point) pairs not lit.
 uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
                                  std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
                                  std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
                                  bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
-                                 const BlockContributionFn& visit, std::span<const uint8_t> corners = {});
+                                 const BlockContributionFn& visit, const BlockSharing* sharing = nullptr);
 
 }  // namespace q3::light

@@ -54,11 +54,10 @@ void addAreaEmitter(sh::SH9Color& acc, const Light& light, Vec3 pushed, Vec3 tra
                                     toRgb(light.color * transmission, radiance));
 }
 
-// Marks in `corners` (one per free point of `free`, the grid indices of the block's free points in
-// block order) the points at the corners of the block's lattice box; false when one of those
-// corners is in solid (its verdict is missing, so the block traces every ray).
-bool blockCorners(std::span<const GridBlockPoint> block, std::span<const size_t> free, std::array<int, 3> bounds,
-                  std::vector<uint8_t>& corners) {
+}  // namespace
+
+bool blockCornerWeights(std::span<const GridBlockPoint> block, std::span<const size_t> free, std::array<int, 3> bounds,
+                        BlockCornerWeights& out) {
     const size_t bx = size_t(bounds[0]), by = size_t(bounds[1]);
     auto latticeOf = [&](size_t i) { return std::array<size_t, 3>{i % bx, (i / bx) % by, i / (bx * by)}; };
     std::array<size_t, 3> lo{SIZE_MAX, SIZE_MAX, SIZE_MAX}, hi{0, 0, 0};
@@ -69,18 +68,52 @@ bool blockCorners(std::span<const GridBlockPoint> block, std::span<const size_t>
             hi[a] = std::max(hi[a], c[a]);
         }
     }
-    size_t expected = 1;
-    for (int a = 0; a < 3; ++a) expected *= hi[a] > lo[a] ? 2 : 1;
-    corners.assign(free.size(), 0);
-    size_t found = 0;
+    out.slotsOf.assign(free.size(), 0);
+    out.weights.assign(free.size(), {});
+    uint8_t filled = 0;
+    size_t cornerPoints = 0;
     for (size_t k = 0; k < free.size(); ++k) {
         const std::array<size_t, 3> c = latticeOf(free[k]);
-        bool corner = true;
-        for (int a = 0; a < 3; ++a) corner = corner && (c[a] == lo[a] || c[a] == hi[a]);
-        corners[k] = corner ? 1 : 0;
-        found += corner ? 1 : 0;
+        std::array<float, 3> t{};
+        for (int a = 0; a < 3; ++a) t[a] = hi[a] > lo[a] ? float(c[a] - lo[a]) / float(hi[a] - lo[a]) : 0.0f;
+        uint8_t slots = 0;
+        for (int slot = 0; slot < 8; ++slot) {
+            float w = 1;
+            bool atSlot = true;
+            for (int a = 0; a < 3; ++a) {
+                const bool upper = (slot >> a) & 1;
+                w *= upper ? t[a] : 1 - t[a];
+                atSlot = atSlot && c[a] == (upper ? hi[a] : lo[a]);
+            }
+            out.weights[k][size_t(slot)] = w;
+            if (atSlot) {
+                slots = uint8_t(slots | (1u << slot));
+                out.slot[size_t(slot)] = k;
+            }
+        }
+        out.slotsOf[k] = slots;
+        filled = uint8_t(filled | slots);
+        cornerPoints += slots ? 1 : 0;
     }
-    return found == expected && free.size() > expected;
+    return filled == 0xFF && free.size() > cornerPoints;
+}
+
+namespace {
+
+// Whether `light` is far enough from the box of a block's corners that its light varies smoothly
+// over the block: the gap between the box and the light (an area light's emitter sphere) is at
+// least kFarFromBlock times the box's largest extent. Suns are parallel light.
+constexpr float kFarFromBlock = 2.0f;
+bool farFromBlock(const Light& light, const Bounds& box) {
+    if (light.type == LightType::Sun) return true;
+    Vec3 centre = light.origin;
+    float radius = 0;
+    if (light.type == LightType::Area && light.emitter.radius >= 0) {
+        centre = light.emitter.center;
+        radius = light.emitter.radius;
+    }
+    const Vec3 nearest = vmin(vmax(centre, box.mins), box.maxs);
+    return distance(nearest, centre) - radius >= kFarFromBlock * maxComponent(box.maxs - box.mins);
 }
 
 bool isBlack(const sh::GridPointSH& p) {  // every coefficient zero
@@ -141,24 +174,60 @@ uint64_t addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const L
                                  std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
                                  std::span<const float> envelopes, std::span<const Vec3> origins,
                                  std::span<const int> clusters, const LightingEnv& env,
-                                 std::span<const uint8_t> corners) {
+                                 const BlockCornerWeights* corners) {
     thread_local std::vector<float> ownEnvelopes;
     if (envelopes.empty()) {  // one probe's call: only the candidates' envelopes are read
         ownEnvelopes.assign(lights.size(), 0.0f);
         for (uint32_t i : candidates) ownEnvelopes[i] = lightEnvelope(lights[i], env.settings.forceFast);
         envelopes = ownEnvelopes;
     }
+    auto project = [&](sh::SH9Color& acc, size_t p, uint32_t lightIndex, const LightContribution& c,
+                       const Vec3* transmission) {
+        const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
+        if (t == Vec3{}) return;
+        projectContribution(acc, lights[lightIndex], origins[p], c, t, env.settings, false);
+    };
+    const BlockContributionFn visit = [&](size_t p, uint32_t lightIndex, const LightContribution& c,
+                                          const Vec3* transmission) { project(accs[p], p, lightIndex, c, transmission); };
+    const std::function<bool(const Light&)> styleZero = [](const Light& light) {
+        return light.style == 0;  // IBSP grids hold style 0 only (styled light is switchable)
+    };
     // One stream per block, flagged incoherent: the rays spread from the probes towards every light
     // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
-    return traceBlockContributions(
-        lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false, false,
-        [](const Light& light) { return light.style == 0; },  // IBSP grids hold style 0 only (styled light is switchable)
-        [&](size_t p, uint32_t lightIndex, const LightContribution& c, const Vec3* transmission) {
-            const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
-            if (t == Vec3{}) return;
-            projectContribution(accs[p], lights[lightIndex], origins[p], c, t, env.settings, false);
-        },
-        corners);
+    if (!corners || corners->slotsOf.size() != origins.size())
+        return traceBlockContributions(lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false,
+                                       false, styleZero, visit);
+
+    // The far lights' light at each corner slot, interpolated to the other probes at the end.
+    Bounds box;
+    for (size_t p = 0; p < origins.size(); ++p)
+        if (corners->slotsOf[p]) box.add(origins[p]);
+    thread_local std::vector<uint8_t> far;
+    far.clear();
+    for (uint32_t i : candidates) far.push_back(farFromBlock(lights[i], box) ? 1 : 0);
+    std::array<sh::SH9Color, 8> slotLight{};
+    BlockSharing sharing;
+    sharing.corners = corners->slotsOf;
+    sharing.far = far;
+    sharing.visitShared = [&](size_t p, uint32_t lightIndex, const LightContribution& c, const Vec3* transmission) {
+        sh::SH9Color one;
+        project(one, p, lightIndex, c, transmission);
+        accs[p] = sh::add(accs[p], one);
+        for (size_t slot = 0; slot < 8; ++slot)
+            if ((corners->slotsOf[p] >> slot) & 1) slotLight[slot] = sh::add(slotLight[slot], one);
+    };
+    const uint64_t skipped = traceBlockContributions(lights, candidates, clearOfSolid, envelopes, origins, clusters,
+                                                     env, false, false, styleZero, visit, &sharing);
+    for (size_t p = 0; p < origins.size(); ++p) {
+        if (corners->slotsOf[p]) continue;
+        for (size_t slot = 0; slot < 8; ++slot) {
+            const double w = corners->weights[p][slot];
+            if (w == 0) continue;
+            for (int k = 0; k < sh::kCoeffCount; ++k)
+                for (int ch = 0; ch < 3; ++ch) accs[p].c[k][ch] += w * slotLight[slot].c[k][ch];
+        }
+    }
+    return skipped;
 }
 
 void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {
@@ -273,7 +342,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
         grid.setPoint(i, sh::toGridPoint(sh::scale(acc, gridScale)));
     };
     const GridLattice lattice{layout.bounds, layout.mins, layout.size};
-    std::atomic<uint64_t> sharedSunRays{0};
+    std::atomic<uint64_t> sharedPairs{0};
     if (ctx.options.cheapGrid) {
         // -cheapgrid stops once the point is white, so each light's ray is traced before the next.
         auto lightPoint = [&](size_t i, Vec3 latticePoint, const BlockLights& reaching) {
@@ -303,7 +372,9 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
             thread_local std::vector<Vec3> at;
             thread_local std::vector<int> clusters;
             thread_local std::vector<sh::SH9Color> accs;
-            thread_local std::vector<uint8_t> corners;
+            thread_local BlockCornerWeights corners;
+            thread_local std::vector<uint32_t> candidates;
+            thread_local std::vector<uint8_t> clearOfSolid;
             index.clear();
             at.clear();
             clusters.clear();
@@ -314,10 +385,23 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
                     clusters.push_back(placed->cluster);
                 }
             accs.assign(index.size(), sh::SH9Color{});
-            const bool share = !ctx.options.shExact && blockCorners(blockPoints, index, layout.bounds, corners);
-            sharedSunRays += addLightsToGridPointsSH(accs, ctx.lights, reaching.candidates, reaching.clearOfSolid,
-                                                     envelopes, at, clusters, env,
-                                                     share ? std::span<const uint8_t>(corners) : std::span<const uint8_t>());
+            // The candidates were culled for the block grown by the farthest nudge; most blocks
+            // nudge no point, and their own points' box drops more lights.
+            Bounds placedBox;
+            for (const Vec3& o : at) placedBox.add(o);
+            candidates.clear();
+            clearOfSolid.clear();
+            for (size_t k = 0; k < reaching.candidates.size(); ++k) {
+                const uint32_t i = reaching.candidates[k];
+                if (!lightReachesBounds(ctx.lights[i], placedBox, envelopes[i]) ||
+                    areaLightSurelyDarkIn(ctx.lights[i], placedBox, env.settings))
+                    continue;
+                candidates.push_back(i);
+                if (!reaching.clearOfSolid.empty()) clearOfSolid.push_back(reaching.clearOfSolid[k]);
+            }
+            const bool share = !ctx.options.shExact && blockCornerWeights(blockPoints, index, layout.bounds, corners);
+            sharedPairs += addLightsToGridPointsSH(accs, ctx.lights, candidates, clearOfSolid, envelopes, at, clusters,
+                                                   env, share ? &corners : nullptr);
             for (size_t k = 0; k < index.size(); ++k) store(index[k], accs[k]);
         };
         lightGridBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,
@@ -328,7 +412,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
     ShTraceStats stats;
     stats.points = numPoints;
     stats.bounds = layout.bounds;
-    stats.sharedSunRays = sharedSunRays.load();
+    stats.sharedPairs = sharedPairs.load();
     for (size_t i = 0; i < numPoints; ++i) {
         stats.nudged += nudged[i];
         stats.inSolid += solid[i];
@@ -342,7 +426,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
     for (size_t i = 0; i < numPoints; ++i) stats.blackAfterFill += isBlack(grid.point(i)) ? 1 : 0;
     log.info(strCat("SH grid: ", stats.nudged, " points nudged out of solid, ", stats.inSolid, " in solid, ",
                     stats.filled, " filled from neighbours, ", stats.blackBeforeFill, " black before the fill, ",
-                    stats.blackAfterFill, " after, ", stats.sharedSunRays, " sun rays answered by their block's corners"));
+                    stats.blackAfterFill, " after, ", stats.sharedPairs, " light-probe pairs taken from their block's corners"));
     if (statsOut) *statsOut = std::move(stats);
     return grid;
 }

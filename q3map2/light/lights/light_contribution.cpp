@@ -22,11 +22,6 @@ float clampedDistance(float dist, float extraDist) {
     return std::max(kMinDistance, std::sqrt(dist * dist + extraDist * extraDist));
 }
 
-bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
-    if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
-    return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
-}
-
 // Spot cone factor of q3map2 (1 inside, linear fade over the last 32 units, 0 outside), or
 // nullopt when the point is behind the spotlight or outside its cone.
 std::optional<float> spotFactor(const Light& light, Vec3 point) {
@@ -132,6 +127,11 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
 
 }  // namespace
 
+bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
+    if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
+    return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
+}
+
 bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings) {
     if (light.type != LightType::Area || light.controlled || settings.faster || box.empty()) return false;
     // The per-point tests drop points more than 1 unit behind a one-sided emitter.
@@ -153,9 +153,20 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
     const float nearest = std::max(distance(nearestInBox, light.emitter.center) - light.emitter.radius, length(gap)) -
                           kPushReach;
     if (!(nearest > 1.0f)) return false;
-    // Both cosines at most 1; the extra 10 % keeps this bound above every per-point one whatever
-    // their roundings.
-    const float bound = light.emitter.area / (kPi * nearest * nearest) * 1.1f + 1e-5f;
+    // The receiver's cosine at most 1; the emitter's at most the box's greatest height over the
+    // emitter's plane (pushed points sit 8 units above it) over the nearest distance. The extra
+    // 10 % keeps this bound above every per-point one whatever their roundings.
+    float emitterCosine = 1;
+    if (light.emitter.flat) {
+        float height = 0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 c{(corner & 1) ? box.maxs.x : box.mins.x, (corner & 2) ? box.maxs.y : box.mins.y,
+                         (corner & 4) ? box.maxs.z : box.mins.z};
+            height = std::max(height, std::fabs(dot(c - light.emitter.center, light.emitter.planeNormal)));
+        }
+        emitterCosine = std::min(1.0f, (height + kPushReach + light.emitter.flatness) / nearest);
+    }
+    const float bound = light.emitter.area * emitterCosine / (kPi * nearest * nearest) * 1.1f + 1e-5f;
     return bound * light.add <= light.falloffTolerance;
 }
 

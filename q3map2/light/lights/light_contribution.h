@@ -60,6 +60,10 @@ struct LightingEnv {
 // emitter's plane), finds no more than the -fast tolerance.
 bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings);
 
+// Whether the visibility data rule out any light of `light` at a point of `cluster`: a cluster that
+// cannot see the light's cluster, or a sun whose sky the cluster cannot see.
+bool pvsCulled(const Light& light, int cluster, const LightingEnv& env);
+
 // Controlled-model terms (specs/light-models.md).
 float controlledFalloff(const ControlledParams& p, float distance);
 float controlledCone(const ControlledParams& p, Vec3 spotAxis, Vec3 towardsLight);
