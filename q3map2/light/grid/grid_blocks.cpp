@@ -45,7 +45,11 @@ void gridLightsReaching(std::span<const Light> lights, std::span<const float> en
 void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out) {
     reach.reaching(bounds, out);
-    std::erase_if(out, [&](uint32_t i) { return !lights[i].affectsGrid || areaLightSurelyDarkIn(lights[i], bounds, settings); });
+    std::erase_if(out, [&](uint32_t i) { return !mayLightGridIn(lights[i], bounds, settings); });
+}
+
+bool mayLightGridIn(const Light& light, const Bounds& bounds, const ContributionSettings& settings) {
+    return light.affectsGrid && !areaLightSurelyDarkIn(light, bounds, settings);
 }
 
 namespace {
@@ -281,6 +285,7 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
             for (size_t p = 0; p < np && (open || blocked || dark); ++p) {
                 if (!corners[p]) continue;
                 const int32_t ray = s.rayOf[k * np + p];
+                // A corner lit without a ray (too close to the light to trace) agrees with neither.
                 const Vec3 t = ray >= 0 ? s.transmission[size_t(ray)] : Vec3{0.5f, 0.5f, 0.5f};
                 open = open && t == Vec3{1, 1, 1};
                 blocked = blocked && t == Vec3{};

@@ -49,6 +49,9 @@ Bounds gridBlockBounds(const GridBlock& block, Vec3 mins, Vec3 size, float margi
 // lights may add more than their -fast tolerance there (areaLightSurelyDarkIn).
 void gridLightsReaching(std::span<const Light> lights, std::span<const float> envelopes, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
+// Whether a light whose envelope reaches `bounds` may light a grid point inside them: it affects
+// the grid and is not surely dark there (areaLightSurelyDarkIn).
+bool mayLightGridIn(const Light& light, const Bounds& bounds, const ContributionSettings& settings);
 // The same from an index of the lights' envelopes built once for many blocks.
 void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
@@ -148,9 +151,10 @@ struct BlockSharing {
 };
 
 // With `sharing` (and a scene), every light is first lit and traced at the corner points. A far
-// light that reaches every corner with a ray, all of them open or all blocked, is shared: the
-// corners report it to sharing->visitShared, and the points between them neither light nor trace
-// it (the caller interpolates the corners). Occluders smaller than the block can hide from the
+// light whose corners agree is shared: every corner reached with a ray, all of them open or all
+// blocked, or no corner reached although every corner's cluster may see the light. The corners
+// report it to sharing->visitShared, and the points between them neither light nor trace it (the
+// caller interpolates the corners). Occluders smaller than the block can hide from the
 // corners; the SH grid measures what that costs against every pair lit (-shexact). Returns the
 // number of (light, point) pairs not lit.
 uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,

@@ -394,7 +394,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
             for (size_t k = 0; k < reaching.candidates.size(); ++k) {
                 const uint32_t i = reaching.candidates[k];
                 if (!lightReachesBounds(ctx.lights[i], placedBox, envelopes[i]) ||
-                    areaLightSurelyDarkIn(ctx.lights[i], placedBox, env.settings))
+                    !mayLightGridIn(ctx.lights[i], placedBox, env.settings))
                     continue;
                 candidates.push_back(i);
                 if (!reaching.clearOfSolid.empty()) clearOfSolid.push_back(reaching.clearOfSolid[k]);
