@@ -164,13 +164,11 @@ TEST(ShGridInIoquake3, RealMapBrightnessMatchesLegacyAtFiveSpawns) {
         EXPECT_GT(legacyModel.pixels, 300u) << views[i] << ": no model in view";
         // Same units as the format states (1.0 = a legacy byte of 255 before the overbright shift),
         // so the legacy shot keeps its ambient at that scale (r_ambientScale 1, not the engine's
-        // 0.6). Measured on oacmpdm5: SH / legacy 1.23, 1.01, 1.14, 0.97, 1.17 (mean 1.11), while
-        // the grids' own means at the eye agree within 6% at four spawns: the legacy path clips
-        // each grid colour at 255 after the overbright shift, before the cosine, the SH path only
-        // the lit vertex. The 10% is not reached at three spawns; the band is 40% (the first
-        // spawn measured 1.23-1.28 over five runs), which still catches a lost overbright shift
-        // (x0.25) or a lost byte scale (x255).
-        EXPECT_NEAR(ratio, 1.0, 0.40) << views[i];
+        // 0.6), and the renderer saturates the SH sample's ambient and directed parts as ioquake3
+        // saturates lump 15's. Measured on oacmpdm5 over five runs: SH / legacy 1.081-1.089,
+        // 0.968-1.012, 1.034-1.038, 0.929-0.938, 1.067-1.092 (the idle animation moves a run by up
+        // to 2%). Without the saturation: 1.23, 1.01, 1.14, 0.97, 1.17.
+        EXPECT_NEAR(ratio, 1.0, 0.10) << views[i];
         ratios.push_back(ratio);
         expectSamplesMatchRuntime(bsp, sh);
         // Where the model's ratio comes from: the two grids' own means at the eye, where the
@@ -231,7 +229,8 @@ TEST(ShGridInIoquake3, MalformedLumpIsIgnoredWithOneWarning) {
         const MaskedStats model = modelStats(shot, none);
         std::cout << "    model luma " << model.meanLuminance << " against " << legacyModel.meanLuminance
                   << " with the legacy grid\n";
-        // Measured within 0.4-2.9% over 6 runs; the SH grid lights this model 23-26% brighter.
+        // Measured within 0.02-2.9% over 7 runs; the SH grid lights this model 13-14% brighter
+        // (against the engine's own r_ambientScale 0.6).
         EXPECT_NEAR(model.meanLuminance, legacyModel.meanLuminance, 0.06 * legacyModel.meanLuminance);
     }
 }
