@@ -150,6 +150,24 @@ struct ShaderFoliage {
     int inverseAlpha = 0;  // 0: alpha as is, 1: inverted, 2: ignored
 };
 
+// One step of q3map_colorGen / colorMod / rgbGen / rgbMod / alphaGen / alphaMod (q3map2's colorMod
+// list): -bsp scales and offsets the vertex colour of the shader's surfaces, c' = mult * c + add,
+// clamped to 0..255. The dot products use the vertex normal and `vector`; the Scale forms then
+// map [lo, hi] to [0, 1].
+struct ShaderColorMod {
+    enum class Kind : uint8_t {
+        None,    // an unknown method: changes nothing
+        Volume,  // marks brushes whose volume applies the shader's other steps to vertexes inside
+        ColorSet, AlphaSet, ColorScale, AlphaScale,
+        ColorDotProduct, AlphaDotProduct, ColorDotProductScale, AlphaDotProductScale,
+        ColorDotProduct2, AlphaDotProduct2, ColorDotProduct2Scale, AlphaDotProduct2Scale,
+    };
+    Kind kind = Kind::Volume;
+    Vec3 vector;       // set / scale colour, or the dot product's vector
+    float value = 0;   // alpha set / scale
+    float lo = 0, hi = 1;  // dotProductScale range
+};
+
 struct ShaderInfo {
     std::string name;            // as written in the script (or the texture name), no extension
     bool explicitScript = false; // false: implicit shader made up for a texture without a script
@@ -238,7 +256,10 @@ struct ShaderInfo {
     // q3map_tcMod translate/scale/rotate, composed in script order: s' = m[0] . (s, t, 1),
     // t' = m[1] . (s, t, 1); the identity when the shader has none.
     std::array<std::array<float, 3>, 3> tcMod{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    std::vector<ShaderColorMod> colorMods;  // q3map_*Gen / q3map_*Mod steps, in script order
 
+    // Brushes of this shader are colorMod volumes (its first colorMod step is `volume`).
+    bool isColorModVolume() const { return !colorMods.empty() && colorMods.front().kind == ShaderColorMod::Kind::Volume; }
     bool isSky() const { return (compileFlags & compileflags::Sky) != 0; }
     bool isTranslucent() const { return (compileFlags & compileflags::Translucent) != 0; }
     bool isNoDraw() const { return (compileFlags & compileflags::NoDraw) != 0; }

@@ -15,10 +15,8 @@ namespace {
 // q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 14> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel",
-    "q3map_fur",          "q3map_colorGen",    "q3map_colorMod",     "q3map_rgbGen",        "q3map_rgbMod",
-    "q3map_alphaGen",     "q3map_alphaMod",    "q3map_indexed",      "q3map_patchShadows",
+constexpr std::array<std::string_view, 8> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel", "q3map_fur",           "q3map_indexed",         "q3map_patchShadows",
     "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
 };
 
@@ -374,6 +372,9 @@ private:
             parseTcMod(shader, token);
         } else if (is("q3map_tcGen")) {
             parseTcGen(shader, token);
+        } else if (is("q3map_colorGen") || is("q3map_colorMod") || is("q3map_rgbGen") || is("q3map_rgbMod") ||
+                   is("q3map_alphaGen") || is("q3map_alphaMod")) {
+            parseColorMod(shader, token, is("q3map_alphaGen") || is("q3map_alphaMod"));
         } else if (isIgnoredQ3mapDirective(token)) {
             // Not lighting related.
         } else if (!applySurfaceParm(std::string_view(token).substr(6), shader)) {
@@ -401,6 +402,62 @@ private:
                 for (int j = 0; j < 3; ++j) m[i][j] = old[i][0] * r[0][j] + old[i][1] * r[1][j] + old[i][2] * r[2][j];
         } else {
             log_.warning(where() + ": shader '" + shader.name + "': unknown q3map_tcMod method '" + method + "'");
+        }
+    }
+
+    // A parenthesised list of numbers, "( a b c )".
+    std::vector<float> argList(const ShaderInfo& shader, const std::string& token, size_t count) {
+        if (argToken(shader, token) != "(") script_.fail(token + " in shader '" + shader.name + "': expected '('");
+        std::vector<float> values;
+        for (size_t i = 0; i < count; ++i) values.push_back(argFloat(shader, token));
+        if (argToken(shader, token) != ")") script_.fail(token + " in shader '" + shader.name + "': expected ')'");
+        return values;
+    }
+
+    // q3map_[color|rgb|alpha][Gen|Mod] <method> <parameters>: one step appended to the shader's
+    // colorMod list; an unknown method still takes its place in the list and changes nothing, as in
+    // q3map2.
+    void parseColorMod(ShaderInfo& shader, const std::string& token, bool alpha) {
+        using Kind = ShaderColorMod::Kind;
+        ShaderColorMod& cm = shader.colorMods.emplace_back();
+        cm.kind = Kind::Volume;
+        const std::string method = argToken(shader, token);
+        auto is = [&](std::string_view name) { return equalsNoCase(method, name); };
+        auto vector = [&](size_t count) {
+            const std::vector<float> v = argList(shader, token, count);
+            cm.vector = {v[0], v[1], v[2]};
+            if (count == 5) {
+                cm.lo = v[3];
+                cm.hi = v[4];
+            }
+        };
+        if (alpha && (is("set") || is("const"))) {
+            cm.kind = Kind::AlphaSet;
+            cm.value = argFloat(shader, token);
+        } else if (is("set") || is("const")) {
+            cm.kind = Kind::ColorSet;
+            vector(3);
+        } else if (alpha && is("scale")) {
+            cm.kind = Kind::AlphaScale;
+            cm.value = argFloat(shader, token);
+        } else if (is("scale")) {
+            cm.kind = Kind::ColorScale;
+            vector(3);
+        } else if (is("dotProduct")) {
+            cm.kind = alpha ? Kind::AlphaDotProduct : Kind::ColorDotProduct;
+            vector(3);
+        } else if (is("dotProductScale")) {
+            cm.kind = alpha ? Kind::AlphaDotProductScale : Kind::ColorDotProductScale;
+            vector(5);
+        } else if (is("dotProduct2")) {
+            cm.kind = alpha ? Kind::AlphaDotProduct2 : Kind::ColorDotProduct2;
+            vector(3);
+        } else if (is("dotProduct2scale")) {
+            cm.kind = alpha ? Kind::AlphaDotProduct2Scale : Kind::ColorDotProduct2Scale;
+            vector(5);
+        } else if (!is("volume")) {
+            cm.kind = Kind::None;  // kept in the list with no effect, as q3map2 does
+            log_.warning(where() + ": shader '" + shader.name + "': unknown " + token + " method '" + method + "'");
         }
     }
 

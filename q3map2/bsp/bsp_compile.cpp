@@ -130,12 +130,15 @@ void finishModel(ModelContext& c, size_t entityIndex, std::vector<DrawSurface>& 
     // Surface flares and _skybox copies are appended while the list is walked, and filtered after
     // the others; a copy skips what its original went through before filtering.
     const std::optional<ModelTransform> skybox = entityIndex == 0 ? skyboxTransform(c.in.map.entities) : std::nullopt;
+    const std::vector<const Brush*> volumes = colorModVolumes(entity);
     for (size_t i = 0; i < surfaces.size(); ++i) {
         const bool shaderOnly = surfaces[i].kind == SurfaceKind::Shader;
         const bool isSkyCopy = surfaces[i].skyboxCopy;
         if (surfaces[i].verts.empty() && surfaces[i].kind != SurfaceKind::Flare && !shaderOnly) continue;
         if (!isSkyCopy) {
             applyTcMod(surfaces[i]);
+            applyColorMods(surfaces[i]);
+            applyVolumeColorMods(surfaces[i], volumes, c.in.map.planes);
             FoliageInputs foliage{c.models, c.in.map, c.random, entity.mapEntityNum};
             std::vector<DrawSurface> scattered;
             addFoliage(surfaces[i], foliage, scattered, c.log);

@@ -10,6 +10,7 @@
 
 #include "bsp_samples.h"
 #include "bsp_stage.h"
+#include "bspfile.h"
 #include "conformance_pipeline.h"
 #include "file_io.h"
 #include "log.h"
@@ -98,6 +99,17 @@ SampleCompiles compileSampleBothWays(const fs::path& reference, const std::strin
     out.ours = compileSample(name, out.work / "ours");
     out.theirs = referenceSampleCompile(reference, name, out.work / "ref");
     return out;
+}
+
+void expectSampleOutputsEqual(const SampleCompiles& compiles, const std::string& name) {
+    const bsp::Bsp a = bsp::readBsp(compiles.ours / (name + ".bsp")), b = bsp::readBsp(compiles.theirs / (name + ".bsp"));
+    for (int lump = 0; lump < bsp::kMaxLumps; ++lump) {
+        if (lump == bsp::LUMP_ENTITIES) continue;
+        EXPECT_TRUE(bsp::lumpBytes(a, lump) == bsp::lumpBytes(b, lump)) << bsp::lumpName(lump);
+    }
+    for (const char* extension : {".srf", ".prt"})
+        EXPECT_EQ(readFileText(compiles.ours / (name + extension)), readFileText(compiles.theirs / (name + extension)))
+            << extension;
 }
 
 fs::path oacmpSource(const std::string& name) {

@@ -34,6 +34,10 @@ struct SampleCompiles {
 };
 SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name);
 
+// Test expectations on a sample compiled both ways: every lump but the entities (which record the
+// command line) byte for byte, and the same .srf and .prt.
+void expectSampleOutputsEqual(const SampleCompiles& compiles, const std::string& name);
+
 // The .map source of an oacmp map by name ("oacmpdm7"); fails the test when it is missing.
 std::filesystem::path oacmpSource(const std::string& name);
 

@@ -8,7 +8,6 @@
 
 #include "bsp_reference.h"
 #include "bspfile.h"
-#include "file_io.h"
 #include "reference_fixture.h"
 #include "test_data.h"
 
@@ -21,13 +20,9 @@ using namespace q3::bspstage::test;
 class ShaderCopiesReference : public conformance::ReferenceTest<int> {};
 
 TEST_P(ShaderCopiesReference, EveryLumpButTheEntitiesEqualsQ3map2s) {
-    const auto [work, ours, theirs] = compileSampleBothWays(reference(), "shader_copies");
-    const bsp::Bsp a = bsp::readBsp(ours / "shader_copies.bsp"), b = bsp::readBsp(theirs / "shader_copies.bsp");
-    for (int lump = 0; lump < bsp::kMaxLumps; ++lump)
-        if (lump != bsp::LUMP_ENTITIES)
-            EXPECT_TRUE(bsp::lumpBytes(a, lump) == bsp::lumpBytes(b, lump)) << bsp::lumpName(lump);
-    EXPECT_EQ(readFileText(ours / "shader_copies.srf"), readFileText(theirs / "shader_copies.srf"));
-    EXPECT_EQ(readFileText(ours / "shader_copies.prt"), readFileText(theirs / "shader_copies.prt"));
+    const SampleCompiles compiles = compileSampleBothWays(reference(), "shader_copies");
+    expectSampleOutputsEqual(compiles, "shader_copies");
+    const bsp::Bsp a = bsp::readBsp(compiles.ours / "shader_copies.bsp");
     // The sample must exercise what it claims: the remap target and every copy's shader are named.
     std::vector<std::string> names;
     for (const bsp::Shader& s : a.shaders) names.emplace_back(s.name, strnlen(s.name, sizeof s.name));
@@ -35,7 +30,7 @@ TEST_P(ShaderCopiesReference, EveryLumpButTheEntitiesEqualsQ3map2s) {
                              "textures/samples/cel"})
         EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
     EXPECT_EQ(std::find(names.begin(), names.end(), "textures/samples/remapped"), names.end());
-    fs::remove_all(work);
+    fs::remove_all(compiles.work);
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, ShaderCopiesReference, ::testing::Values(0));

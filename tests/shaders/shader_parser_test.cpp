@@ -356,6 +356,38 @@ TEST(ShaderParser, TcModComposesInScriptOrderAndRemapKeepsItsTarget) {
     EXPECT_NE(cap.all().find("unknown q3map_tcMod method 'wobble'"), std::string::npos) << cap.all();
 }
 
+// q3map_[color|rgb|alpha][Gen|Mod] steps keep script order with their arguments; `volume` first marks
+// the shader's brushes as colorMod volumes; an unknown method warns and stays as a step that does nothing.
+TEST(ShaderParser, ColorModStepsInScriptOrder) {
+    using Kind = ShaderColorMod::Kind;
+    const ShaderInfo si = parseOne(R"(x
+{
+    q3map_alphaMod volume
+    q3map_alphaGen const 0.25
+    q3map_rgbGen set ( 0.2 0.4 0.6 )
+    q3map_colorMod scale ( 1 0.5 0.25 )
+    q3map_alphaMod dotProduct2 ( 0 0 0.95 )
+    q3map_rgbMod dotProductScale ( 1 0 0 -1 1 )
+    q3map_alphaMod dotproduct2scale ( 0 1 0 0.25 1 )
+}
+)");
+    ASSERT_EQ(si.colorMods.size(), 7u);
+    EXPECT_TRUE(si.isColorModVolume());
+    const std::vector<Kind> kinds = {Kind::Volume, Kind::AlphaSet, Kind::ColorSet, Kind::ColorScale,
+                                     Kind::AlphaDotProduct2, Kind::ColorDotProductScale, Kind::AlphaDotProduct2Scale};
+    for (size_t i = 0; i < kinds.size(); ++i) EXPECT_EQ(si.colorMods[i].kind, kinds[i]) << i;
+    EXPECT_FLOAT_EQ(si.colorMods[1].value, 0.25f);
+    EXPECT_FLOAT_EQ(si.colorMods[2].vector.y, 0.4f);
+    EXPECT_FLOAT_EQ(si.colorMods[4].vector.z, 0.95f);
+    EXPECT_FLOAT_EQ(si.colorMods[5].lo, -1);
+    EXPECT_FLOAT_EQ(si.colorMods[6].lo, 0.25f);
+    EXPECT_FLOAT_EQ(si.colorMods[6].hi, 1);
+    EXPECT_FALSE(parseOne("y\n{\n q3map_alphaMod set 0\n q3map_alphaMod volume\n}\n").isColorModVolume());
+    CapturedLog cap;
+    parse("z\n{\n q3map_colorMod wobble\n}\n", cap);
+    EXPECT_NE(cap.all().find("unknown q3map_colorMod method 'wobble'"), std::string::npos) << cap.all();
+}
+
 // q3map_foliage may appear several times; each keeps its model, scale, density, odds and alpha mode.
 TEST(ShaderParser, FoliageDirectivesInScriptOrder) {
     const ShaderInfo si = parseOne(R"(x

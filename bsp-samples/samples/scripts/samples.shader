@@ -182,3 +182,53 @@ textures/samples/grass
 	q3map_textureSize 64 64
 	q3map_foliage models/samples/post.md3 0.5 64 0.5 2
 }
+
+// color_mods: vertex colour and alpha steps, applied in script order
+textures/samples/rgbdot
+{
+	q3map_textureSize 64 64
+	q3map_rgbGen dotProduct ( 0.3 0.5 0.8 )
+	q3map_alphaMod dotProduct2 ( 0 0.6 0.8 )
+}
+
+textures/samples/colorconst
+{
+	q3map_textureSize 64 64
+	q3map_colorGen const ( 0.2 0.4 0.6 )
+	q3map_alphaGen const 0.3
+	q3map_alphaMod scale 0.5
+}
+
+textures/samples/dotscale
+{
+	q3map_textureSize 64 64
+	q3map_rgbMod dotProductScale ( 1 0 0 -1 1 )
+	q3map_alphaMod dotProduct2scale ( 0 1 0 0.25 1 )
+	q3map_colorMod scale ( 1 0.5 0.25 )
+}
+
+textures/samples/slopealpha
+{
+	q3map_textureSize 64 64
+	q3map_nonplanar
+	q3map_shadeAngle 180
+	q3map_alphaMod dotproduct2 ( 0.0 0.0 0.95 )
+}
+
+textures/samples/alphavolume
+{
+	q3map_alphaMod volume
+	q3map_alphaMod set 0.5
+	surfaceparm nodraw
+	surfaceparm nonsolid
+	surfaceparm trans
+}
+
+textures/samples/tintvolume
+{
+	q3map_colorMod volume
+	q3map_rgbMod scale ( 0.5 1 0.25 )
+	surfaceparm nodraw
+	surfaceparm nonsolid
+	surfaceparm trans
+}
