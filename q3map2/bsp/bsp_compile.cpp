@@ -277,7 +277,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
 
     std::vector<const DrawSurface*> order;
     for (const auto& ds : written) order.push_back(ds.get());
-    out.surfaceExtra = surfaceExtraText(order, options.classify.sampleSize, map);
+    out.surfaceExtra = surfaceExtraText(order, options.classify.sampleSize, map, params);
     out.bsp = std::move(builder.bsp());
     return out;
 }

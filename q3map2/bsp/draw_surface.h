@@ -99,6 +99,9 @@ struct EntitySurfaceParams {
     int sampleSize = 0;       // _lightmapsamplesize / _samplesize / _ss
     float lightmapScale = 0;  // lightmapscale / _lightmapscale / _ls
     float shadeAngle = 0;     // _shadeangle / _smoothnormals / _sn / _sa / _smooth (degrees)
+    // _color (zero or missing: white) x _ambient / ambient: the ambient light -light gives the
+    // entity's lightmaps and vertexes (the .srf ambientColor; the worldspawn's is the default block's).
+    Vec3 ambientColor{0, 0, 0};
 };
 
 }  // namespace q3::bspstage

@@ -89,6 +89,13 @@ struct LightContext {
     LightStats stats;
 };
 
+// The ambient light of a surface's lightmap and vertexes. With a .srf, its ambientColor, as q3map2's
+// -light takes it: the surface entity's _color x _ambient, else the default block's (the worldspawn's,
+// as -bsp writes it). Without a .srf (q3map2 refuses to light then), the worldspawn's.
+inline Vec3 surfaceAmbient(const LightContext& ctx, int surfaceNum) {
+    return ctx.extras.loaded ? ctx.extras.forSurface(surfaceNum).ambientColor : ctx.world.ambient;
+}
+
 // Options -> light scales, colour options (the -scale multiplier applied to every light scale).
 LightScales lightScalesFromOptions(const LightOptions& options);
 ColorOptions colorOptionsFromOptions(const LightOptions& options, float maxLight);

@@ -326,14 +326,36 @@ TEST(SurfaceExtraFile, DefaultBlockThenOnlyWhatDiffers) {
     b.sampleSize = 8;
     b.longestCurve = 12.5f;
     b.lightmapAxis = {0, 0, 0};
-    const std::string text = surfaceExtraText({&a, &b}, 16, c->map);
+    DrawSurface d = a;  // an entity whose ambient equals the world's: nothing written
+    d.mapEntityNum = 2;
+    // Worldspawn "_color" "1 0.5 0.25" "ambient" "4"; entity 2 the same; entity 3 "_ambient" "5".
+    std::vector<EntitySurfaceParams> params(4);
+    params[0].ambientColor = params[2].ambientColor = {4, 2, 1};
+    params[3].ambientColor = {5, 5, 5};
+    const std::string text = surfaceExtraText({&a, &b, &d}, 16, c->map, params);
     EXPECT_EQ(text,
               "default\n{\n\tcastShadows 1\n\treceiveShadows 1\n\tsampleSize 16\n"
-              "\tambientColor ( 0.000000 0.000000 0.000000 )\n\tlongestCurve 0.000000\n}\n\n"
+              "\tambientColor ( 4.000000 2.000000 1.000000 )\n\tlongestCurve 0.000000\n}\n\n"
               "0 // ESurfaceType::Face V: 3 I: 3 planar\n{\n\tshader textures/base/wall\n"
               "\tlightmapAxis ( -0.000000 -0.000000 -1.000000 )\n}\n\n"
               "1 // ESurfaceType::Patch V: 3 I: 0 \n{\n\tshader textures/base/wall\n\tentity 3\n"
-              "\tcastShadows 0\n\tsampleSize 8\n\tlongestCurve 12.500000\n}\n\n");
+              "\tcastShadows 0\n\tsampleSize 8\n\tambientColor ( 5.000000 5.000000 5.000000 )\n"
+              "\tlongestCurve 12.500000\n}\n\n"
+              "2 // ESurfaceType::Face V: 3 I: 3 planar\n{\n\tshader textures/base/wall\n\tentity 2\n"
+              "\tlightmapAxis ( -0.000000 -0.000000 -1.000000 )\n}\n\n");
+}
+
+// The ambient colour of an entity: _color (white when zero or missing) times _ambient, else ambient.
+TEST(SurfaceExtraFile, EntityAmbientIsColorTimesAmbient) {
+    auto ambientOf = [](const std::string& keys) {
+        const map::MapFile file = map::parseMap("{\n\"classname\" \"worldspawn\"\n" + keys + "}\n", "a.map");
+        return entitySurfaceParams(file.entities.at(0), true).ambientColor;
+    };
+    EXPECT_EQ(ambientOf("\"_color\" \"1 0.5 0.25\"\n\"ambient\" \"4\"\n"), (Vec3{4, 2, 1}));
+    EXPECT_EQ(ambientOf("\"_ambient\" \"3\"\n\"ambient\" \"9\"\n"), (Vec3{3, 3, 3}));
+    EXPECT_EQ(ambientOf("\"_color\" \"0 0 0\"\n\"ambient\" \"2\"\n"), (Vec3{2, 2, 2}));
+    EXPECT_EQ(ambientOf("\"_color\" \"0.5 0.5 2\"\n\"_ambient\" \"-2\"\n"), (Vec3{-1, -1, -4}));
+    EXPECT_EQ(ambientOf("\"_color\" \"1 0 0\"\n"), (Vec3{0, 0, 0}));
 }
 
 // A whole compile of a map text with the test shaders (default 64x64 texture sizes).

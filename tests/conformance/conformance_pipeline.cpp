@@ -53,6 +53,31 @@ void runOrThrow(const std::string& what, const std::string& commandLine, const f
                                  "): " + tail(r.output, 5));
 }
 
+// Only the inputs of -light stay in a compile's maps/ folder (the portal file and the like go).
+void keepLightInputs(const fs::path& maps) {
+    for (const fs::directory_entry& e : fs::directory_iterator(maps)) {
+        const std::string ext = e.path().extension().string();
+        if (ext != ".bsp" && ext != ".srf" && ext != ".map") fs::remove_all(e.path());
+    }
+}
+
+// `tool` ("ours"/"reference", for messages) runs as `common` (binary and base path options): -bsp
+// -meta of a copy of `mapSource` in `work`/maps, then -vis -fast; only the inputs of -light stay.
+void compileForLight(const std::string& tool, const std::string& common, const fs::path& mapSource,
+                     const fs::path& work) {
+    const std::string name = mapSource.stem().string();
+    const fs::path map = work / "maps" / (name + ".map");
+    fs::copy_file(mapSource, map);
+    runOrThrow(tool + " -bsp -meta on " + mapSource.string(),
+               "cd " + test::shellQuote(work) + " && " + common + " -bsp -meta " + test::shellQuote(map),
+               work / "bsp.log");
+    const fs::path bsp = work / "maps" / (name + ".bsp");
+    runOrThrow(tool + " -vis -fast on " + bsp.string(),
+               "cd " + test::shellQuote(work) + " && " + common + " -vis -fast " + test::shellQuote(bsp),
+               work / "vis.log");
+    keepLightInputs(work / "maps");
+}
+
 }  // namespace
 
 fs::path referenceBinary(const fs::path& fallback) {
@@ -112,26 +137,13 @@ fs::path freshCompile(const fs::path& reference, const fs::path& gameBase, const
     const fs::path work = root / (".tmp-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()));
     fs::remove_all(work);
     fs::create_directories(work / "maps");
-    const fs::path map = work / "maps" / (name + ".map");
-    fs::copy_file(mapSource, map);
     const std::string common = test::shellQuote(reference) + " -game quake3 -fs_basepath " +
                                test::shellQuote(gameBase) + " -fs_basegame baseoa -threads 2";
     try {
-        runOrThrow("reference -bsp -meta on " + mapSource.string(),
-                   "cd " + test::shellQuote(work) + " && " + common + " -bsp -meta " + test::shellQuote(map),
-                   work / "bsp.log");
-        const fs::path bsp = work / "maps" / (name + ".bsp");
-        runOrThrow("reference -vis -fast on " + bsp.string(),
-                   "cd " + test::shellQuote(work) + " && " + common + " -vis -fast " + test::shellQuote(bsp),
-                   work / "vis.log");
+        compileForLight("reference", common, mapSource, work);
     } catch (...) {
         fs::remove_all(work);
         throw;
-    }
-    // Only the inputs of -light stay (the portal file and the like are left out).
-    for (const fs::directory_entry& e : fs::directory_iterator(work / "maps")) {
-        const std::string ext = e.path().extension().string();
-        if (ext != ".bsp" && ext != ".srf" && ext != ".map") fs::remove_all(e.path());
     }
     std::error_code ec;
     fs::rename(work, final, ec);
@@ -139,6 +151,16 @@ fs::path freshCompile(const fs::path& reference, const fs::path& gameBase, const
     if (!fs::exists(final / "maps" / (name + ".bsp")))
         throw std::runtime_error(final.string() + ": the fresh compile of " + mapSource.string() + " is missing");
     return final;
+}
+
+fs::path ownFreshCompile(const fs::path& ours, const fs::path& gameBase, const fs::path& mapSource,
+                         const fs::path& dest) {
+    fs::remove_all(dest);
+    fs::create_directories(dest / "maps");
+    compileForLight("ours", test::shellQuote(ours) + " -threads 2 -fs_basepath " + test::shellQuote(gameBase) +
+                                " -fs_game baseoa",
+                    mapSource, dest);
+    return dest;
 }
 
 fs::path stageFresh(const fs::path& fresh, const fs::path& dest, const std::string& mapName) {

@@ -32,6 +32,11 @@ std::string freshCacheKey(const std::filesystem::path& reference, const std::fil
 std::filesystem::path freshCompile(const std::filesystem::path& reference, const std::filesystem::path& gameBase,
                                    const std::filesystem::path& dataCache, const std::filesystem::path& mapSource);
 
+// The same compile by ours (`ours` -bsp -meta, then -vis -fast) in `dest` (emptied first), not
+// cached: it follows every build. Returns `dest`, holding maps/NAME.bsp, .srf and .map.
+std::filesystem::path ownFreshCompile(const std::filesystem::path& ours, const std::filesystem::path& gameBase,
+                                      const std::filesystem::path& mapSource, const std::filesystem::path& dest);
+
 // Copies the fresh maps/ folder into dest/maps (dest emptied first); returns dest/maps/NAME.bsp.
 std::filesystem::path stageFresh(const std::filesystem::path& fresh, const std::filesystem::path& dest,
                                  const std::string& mapName);

@@ -32,7 +32,7 @@ struct VertexTracer {
     const LightingEnv& env;
     std::span<const int> clusters;  // the surface's clusters: a sample point must see one of them
     std::span<const Light* const> lights;  // the lights whose envelope reaches the surface's vertexes
-    Vec3 ambient;  // the world ambient in the direct pass; radiosity passes add none
+    Vec3 ambient;  // the surface's ambient (surfaceAmbient) in the direct pass; radiosity passes add none
     bool twoSided = false;
     bool forceSunlight = false;
     // -dirty: q3map2 darkens each traced vertex by the dirt at the vertex itself, also when the
@@ -161,7 +161,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ambient;
                 for (size_t v = 0; v < lit.size(); ++v) lit[v] += traced[v].value_or(fallback);
             };
-            addPass(ctx.lights, reaches[0], ctx.world.ambient);
+            addPass(ctx.lights, reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
             for (size_t b = 0; b < ctx.bounceLights.size(); ++b) addPass(ctx.bounceLights[b], reaches[b + 1], Vec3{});
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);

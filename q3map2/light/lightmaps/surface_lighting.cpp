@@ -525,7 +525,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, lightmapClusters};
 
     // Sample points of every super luxel.
-    const Vec3 ambient = pass.direct ? ctx.world.ambient : Vec3{};
+    const Vec3 ambient = pass.direct ? surfaceAmbient(ctx, surfaceNum) : Vec3{};
     LuxelImage total(w, h);
     std::vector<std::optional<SamplePoint>> points(static_cast<size_t>(w) * static_cast<size_t>(h));
     std::vector<Vec3> superNormals(points.size());
