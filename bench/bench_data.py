@@ -86,6 +86,24 @@ def fresh_key(reference, map_source):
     return "%s-%s-%s" % (name, reference_hash(reference), fnv1a64(map_source))
 
 
+def compile_for_light(common, work, name):
+    """-bsp -meta of work/maps/NAME.map, then -vis -fast, by the tool `common` starts (binary and base
+    path options), logs in work/; only the inputs of -light stay in maps/. None when both ran, else
+    (step, exit code) of the one that failed."""
+    maps = os.path.join(work, "maps")
+    for step, args, target, log in (("-bsp", ["-meta"], name + ".map", "bsp.log"),
+                                     ("-vis", ["-fast"], name + ".bsp", "vis.log")):
+        with open(os.path.join(work, log), "w") as out:
+            code = subprocess.call(common + [step] + args + [os.path.join(maps, target)], cwd=work,
+                                   stdout=out, stderr=subprocess.STDOUT)
+        if code != 0:
+            return step, code
+    for f in os.listdir(maps):
+        if os.path.splitext(f)[1] not in (".bsp", ".srf", ".map"):
+            os.remove(os.path.join(maps, f))
+    return None
+
+
 def fresh_compile(reference, game_base, cache, map_source, prog):
     """The reference's -bsp -meta and -vis -fast of a .map, cached under <cache>/conformance/fresh/
     (keyed by fresh_key, the same cache the conformance tests use): the folder holding maps/NAME.bsp, .srf and .map. A failure ends the
@@ -102,17 +120,10 @@ def fresh_compile(reference, game_base, cache, map_source, prog):
     os.makedirs(maps)
     shutil.copyfile(map_source, os.path.join(maps, name + ".map"))
     common = [reference, "-game", "quake3", "-fs_basepath", game_base, "-fs_basegame", "baseoa", "-threads", "2"]
-    for step, args, target, log in (("-bsp", ["-meta"], name + ".map", "bsp.log"),
-                                     ("-vis", ["-fast"], name + ".bsp", "vis.log")):
-        with open(os.path.join(work, log), "w") as out:
-            code = subprocess.call(common + [step] + args + [os.path.join(maps, target)], cwd=work,
-                                   stdout=out, stderr=subprocess.STDOUT)
-        if code != 0:
-            shutil.rmtree(work, ignore_errors=True)
-            sys.exit("%s: reference %s on %s failed (exit %d)" % (prog, step, map_source, code))
-    for f in os.listdir(maps):
-        if os.path.splitext(f)[1] not in (".bsp", ".srf", ".map"):
-            os.remove(os.path.join(maps, f))
+    failed = compile_for_light(common, work, name)
+    if failed:
+        shutil.rmtree(work, ignore_errors=True)
+        sys.exit("%s: reference %s on %s failed (exit %d)" % (prog, failed[0], map_source, failed[1]))
     try:
         os.rename(work, final)
     except OSError:  # another run put its compile there first

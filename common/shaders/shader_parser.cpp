@@ -472,9 +472,8 @@ private:
             return;
         }
         for (Vec3& v : shader.tcGenVectors) {
-            if (argToken(shader, token) != "(") script_.fail("q3map_tcGen in shader '" + shader.name + "': expected '('");
-            v = argVec3(shader, token);
-            if (argToken(shader, token) != ")") script_.fail("q3map_tcGen in shader '" + shader.name + "': expected ')'");
+            const std::vector<float> read = argList(shader, token, 3);
+            v = {read[0], read[1], read[2]};
             if (inverse)
                 for (float* c : {&v.x, &v.y, &v.z}) *c = *c != 0 ? 1.0f / *c : 0.0f;
         }

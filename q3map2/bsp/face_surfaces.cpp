@@ -99,13 +99,6 @@ double floatKey(const map::MapEntity& e, std::initializer_list<const char*> keys
     return 0;
 }
 
-// A vector key read as sscanf("%f %f %f") reads it: missing or unreadable parts stay zero.
-Vec3 vectorKey(const map::MapEntity& e, const char* key) {
-    Vec3 v{0, 0, 0};
-    if (const std::string* text = e.find(key)) std::sscanf(text->c_str(), "%f %f %f", &v.x, &v.y, &v.z);
-    return v;
-}
-
 // q3map2 snaps brush face vertices to 1/8 unit so that neighbouring faces meet exactly.
 double snapEighth(double v) { return std::floor(v * 8.0 + 0.5) / 8.0; }
 
@@ -134,7 +127,7 @@ EntitySurfaceParams entitySurfaceParams(const map::MapEntity& entity, bool world
     p.sampleSize = std::max(0, intKey(entity, {"_lightmapsamplesize", "_samplesize", "_ss"}, 0));
     p.lightmapScale = float(std::max(0.0, floatKey(entity, {"lightmapscale", "_lightmapscale", "_ls"})));
     p.shadeAngle = float(std::max(0.0, floatKey(entity, {"_shadeangle", "_smoothnormals", "_sn", "_sa", "_smooth"})));
-    Vec3 color = vectorKey(entity, "_color");
+    Vec3 color = parseVectorKey(entity.value("_color")).toFloat();
     if (length(color) == 0) color = {1, 1, 1};
     p.ambientColor = color * float(floatKey(entity, {"_ambient", "ambient"}));
     return p;

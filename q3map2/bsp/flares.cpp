@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "bsp_brushes.h"
 #include "image.h"
 #include "log.h"
 #include "map_file.h"
@@ -33,11 +34,7 @@ DrawSurface flare(const ShaderInfo& shader, int mapEntityNum, const Vec3& origin
     return ds;
 }
 
-Vec3 vectorKey(const map::MapEntity& e, const char* key) {
-    Vec3 v{0, 0, 0};
-    if (const std::string* text = e.find(key)) std::sscanf(text->c_str(), "%f %f %f", &v.x, &v.y, &v.z);
-    return v;
-}
+Vec3 vectorKey(const map::MapEntity& e, const char* key) { return parseVectorKey(e.value(key)).toFloat(); }
 
 }  // namespace
 

@@ -120,10 +120,7 @@ void applyVolumeColorMods(DrawSurface& ds, std::span<const Brush* const> volumes
     for (const Brush* b : volumes) {
         // A world volume colours every surface; a func_group's only its own.
         if (b->mapEntityNum != 0 && b->mapEntityNum != ds.mapEntityNum) continue;
-        bool overlaps = true;
-        for (int a = 0; a < 3; ++a)
-            overlaps = overlaps && b->bounds.mins[a] <= surfaceBounds.maxs[a] && b->bounds.maxs[a] >= surfaceBounds.mins[a];
-        if (!overlaps) continue;
+        if (!b->bounds.intersects(surfaceBounds)) continue;
         for (bsp::DrawVert& v : ds.verts) {
             const bool inside = std::none_of(b->sides.begin(), b->sides.end(), [&](const BrushSide& side) {
                 const MapPlane& p = planes[side.planeNum];
