@@ -27,42 +27,42 @@ static bool isPunctuationToken(const Script& s) {
     return t == "{" || t == "}" || t == "(" || t == ")";
 }
 
-void require(Script& s, std::string_view text, std::string_view where) {
-    if (!s.next(true)) s.fail("unexpected end of file, expected '" + std::string(text) + "' " + std::string(where));
+void require(Script& s, std::string_view text, const Described& where) {
+    if (!s.next(true)) s.fail("unexpected end of file, expected '" + std::string(text) + "' " + where.text());
     if (s.tokenWasQuoted() || s.token() != text)
-        s.fail("expected '" + std::string(text) + "' " + std::string(where) + ", found '" + shown(s.token()) + "'");
+        s.fail("expected '" + std::string(text) + "' " + where.text() + ", found '" + shown(s.token()) + "'");
 }
 
-static double readNumberToken(Script& s, std::string_view what, bool sameLine) {
+static double readNumberToken(Script& s, const Described& what, bool sameLine) {
     if (!s.next(!sameLine)) {
-        if (sameLine) s.fail("line ends before " + std::string(what));
-        s.fail("unexpected end of file, expected " + std::string(what));
+        if (sameLine) s.fail("line ends before " + what.text());
+        s.fail("unexpected end of file, expected " + what.text());
     }
     double value = 0;
-    if (!parseNumber(s.token(), value)) s.fail("expected a number for " + std::string(what) + ", found '" + shown(s.token()) + "'");
+    if (!parseNumber(s.token(), value)) s.fail("expected a number for " + what.text() + ", found '" + shown(s.token()) + "'");
     return value;
 }
 
-double readDouble(Script& s, std::string_view what, bool sameLine) {
+double readDouble(Script& s, const Described& what, bool sameLine) {
     double value = readNumberToken(s, what, sameLine);
-    if (std::fabs(value) > FLT_MAX) s.fail("number out of range for " + std::string(what) + ": '" + shown(s.token()) + "'");
+    if (std::fabs(value) > FLT_MAX) s.fail("number out of range for " + what.text() + ": '" + shown(s.token()) + "'");
     return value;
 }
 
-float readFloat(Script& s, std::string_view what, bool sameLine) { return static_cast<float>(readDouble(s, what, sameLine)); }
+float readFloat(Script& s, const Described& what, bool sameLine) { return static_cast<float>(readDouble(s, what, sameLine)); }
 
-int readInt(Script& s, std::string_view what, bool sameLine) {
+int readInt(Script& s, const Described& what, bool sameLine) {
     double value = readNumberToken(s, what, sameLine);
     if (value != std::floor(value) || value < -2147483648.0 || value > 4294967295.0)
-        s.fail("expected an integer for " + std::string(what) + ", found '" + shown(s.token()) + "'");
+        s.fail("expected an integer for " + what.text() + ", found '" + shown(s.token()) + "'");
     if (value > 2147483647.0) return static_cast<int>(static_cast<uint32_t>(value));
     return static_cast<int>(value);
 }
 
-std::string readTextureName(Script& s, std::string_view where) {
-    if (!s.next(true)) s.fail("unexpected end of file, expected a texture name " + std::string(where));
+std::string readTextureName(Script& s, const Described& where) {
+    if (!s.next(true)) s.fail("unexpected end of file, expected a texture name " + where.text());
     if (isPunctuationToken(s) || s.token().empty())
-        s.fail("missing texture name " + std::string(where) + ", found '" + shown(s.token()) + "'");
+        s.fail("missing texture name " + where.text() + ", found '" + shown(s.token()) + "'");
     return s.token();
 }
 

@@ -39,20 +39,20 @@ MapPatch parsePatchDef(Script& s, const PrimitiveContext& ctx, bool patchDef3) {
     require(s, "(", "to open the control points " + where);
     // The file lists one group per column, each holding that column's rows.
     for (int column = 0; column < patch.width; ++column) {
-        const std::string columnWhere = "column " + std::to_string(column) + " " + where;
-        require(s, "(", "to open " + columnWhere);
+        const auto columnWhere = [&] { return "column " + std::to_string(column) + " " + where; };
+        require(s, "(", [&] { return "to open " + columnWhere(); });
         for (int row = 0; row < patch.height; ++row) {
-            const std::string what = "control point " + std::to_string(row) + " of " + columnWhere;
-            require(s, "(", "to open " + what);
+            const auto what = [&] { return "control point " + std::to_string(row) + " of " + columnWhere(); };
+            require(s, "(", [&] { return "to open " + what(); });
             PatchControl& c = patch.control[size_t(row) * patch.width + column];
-            c.xyz.x = readFloat(s, what + " x");
-            c.xyz.y = readFloat(s, what + " y");
-            c.xyz.z = readFloat(s, what + " z");
-            c.st[0] = readFloat(s, what + " s");
-            c.st[1] = readFloat(s, what + " t");
-            require(s, ")", "to close " + what);
+            c.xyz.x = readFloat(s, [&] { return what() + " x"; });
+            c.xyz.y = readFloat(s, [&] { return what() + " y"; });
+            c.xyz.z = readFloat(s, [&] { return what() + " z"; });
+            c.st[0] = readFloat(s, [&] { return what() + " s"; });
+            c.st[1] = readFloat(s, [&] { return what() + " t"; });
+            require(s, ")", [&] { return "to close " + what(); });
         }
-        require(s, ")", "to close " + columnWhere);
+        require(s, ")", [&] { return "to close " + columnWhere(); });
     }
     require(s, ")", "to close the control points " + where);
 

@@ -48,12 +48,13 @@ bool Script::next(bool crossLine) {
     char c = text_[pos_];
     if (c == '"') {
         quoted_ = true;
-        ++pos_;
+        const size_t start = ++pos_;
         while (pos_ < text_.size() && text_[pos_] != '"') {
             if (text_[pos_] == '\n') ++line_;
-            token_ += text_[pos_++];
+            ++pos_;
         }
         if (pos_ >= text_.size()) fail("unterminated quoted string");
+        token_.assign(text_.data() + start, pos_ - start);
         ++pos_;
         return true;
     }
@@ -62,14 +63,15 @@ bool Script::next(bool crossLine) {
         ++pos_;
         return true;
     }
+    const size_t start = pos_;
     while (pos_ < text_.size()) {
         c = text_[pos_];
         if (static_cast<unsigned char>(c) <= ' ') break;
         if (c == '/' && pos_ + 1 < text_.size() && (text_[pos_ + 1] == '/' || text_[pos_ + 1] == '*')) break;
         if (splitPunctuation_ && isPunctuation(c)) break;
-        token_ += c;
         ++pos_;
     }
+    token_.assign(text_.data() + start, pos_ - start);
     return true;
 }
 

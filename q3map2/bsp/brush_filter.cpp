@@ -83,7 +83,7 @@ struct Filter {
         }
         const int planeNum = node.planeNum;
         const int front = node.children[0], back = node.children[1];
-        auto [f, b] = splitBrushFragment(fragment, planeNum, planes);
+        auto [f, b] = splitBrushFragment(std::move(fragment), planeNum, planes);
         return filter(std::move(f), brushIndex, front) + filter(std::move(b), brushIndex, back);
     }
 };
@@ -114,7 +114,7 @@ double fragmentVolume(const BrushFragment& brush, const PlaneSet& planes) {
     return volume / 3;
 }
 
-std::pair<BrushFragment, BrushFragment> splitBrushFragment(const BrushFragment& brush, int planeNum,
+std::pair<BrushFragment, BrushFragment> splitBrushFragment(BrushFragment brush, int planeNum,
                                                            const PlaneSet& planes) {
     const DPlane& plane = planes[planeNum].plane;
     double frontMost = 0, backMost = 0;
@@ -125,8 +125,8 @@ std::pair<BrushFragment, BrushFragment> splitBrushFragment(const BrushFragment& 
             backMost = std::min(backMost, d);
         }
     }
-    if (frontMost < kPlaneSideEpsilon) return {BrushFragment{}, brush};
-    if (backMost > -kPlaneSideEpsilon) return {brush, BrushFragment{}};
+    if (frontMost < kPlaneSideEpsilon) return {BrushFragment{}, std::move(brush)};
+    if (backMost > -kPlaneSideEpsilon) return {std::move(brush), BrushFragment{}};
 
     Winding mid = baseWindingForPlane(plane);
     for (const auto& s : brush.sides) {
@@ -134,8 +134,8 @@ std::pair<BrushFragment, BrushFragment> splitBrushFragment(const BrushFragment& 
         if (mid.empty()) break;
     }
     if (mid.empty() || windingIsTiny(mid)) {
-        if (mostlyOnBack(brush, plane)) return {BrushFragment{}, brush};
-        return {brush, BrushFragment{}};
+        if (mostlyOnBack(brush, plane)) return {BrushFragment{}, std::move(brush)};
+        return {std::move(brush), BrushFragment{}};
     }
 
     BrushFragment pieces[2];
@@ -148,8 +148,8 @@ std::pair<BrushFragment, BrushFragment> splitBrushFragment(const BrushFragment& 
     for (BrushFragment& piece : pieces)
         if (piece.sides.size() < 3 || !boundsValid(piece)) piece.sides.clear();
     if (pieces[0].empty() || pieces[1].empty()) {
-        if (!pieces[0].empty()) return {brush, BrushFragment{}};
-        if (!pieces[1].empty()) return {BrushFragment{}, brush};
+        if (!pieces[0].empty()) return {std::move(brush), BrushFragment{}};
+        if (!pieces[1].empty()) return {BrushFragment{}, std::move(brush)};
         return {};
     }
     // Each piece is closed by the cut, facing away from it.

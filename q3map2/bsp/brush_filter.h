@@ -24,7 +24,7 @@ struct BrushFragment {
 BrushFragment fragmentOf(const Brush& brush);
 // Cuts the fragment by a map plane into (front, back). A side gets nothing when the brush does not
 // reach more than 0.1 past the plane, when the cut would be tiny, or when a piece has volume < 1.
-std::pair<BrushFragment, BrushFragment> splitBrushFragment(const BrushFragment& brush, int planeNum,
+std::pair<BrushFragment, BrushFragment> splitBrushFragment(BrushFragment brush, int planeNum,
                                                            const PlaneSet& planes);
 double fragmentVolume(const BrushFragment& brush, const PlaneSet& planes);
 

@@ -36,13 +36,20 @@ struct Filter {
             if (ds.planeNum == n.planeNum) return winding(w, n.children[0]);
             if (ds.planeNum == (n.planeNum ^ 1)) return winding(w, n.children[1]);
         }
+        // Whole windings go down unclipped; only crossing ones are split (no copies on the way).
+        switch (windingOnPlaneSide(w, planes[n.planeNum].plane)) {
+        case PlaneSide::Front: return winding(w, n.children[0]);
+        case PlaneSide::Back: return winding(w, n.children[1]);
+        case PlaneSide::On:
+        {
+            // Lying on the plane: better too many references than too few.
+            const int refs = winding(w, n.children[0]);
+            return refs + winding(w, n.children[1]);
+        }
+        case PlaneSide::Cross: break;
+        }
         auto [front, back] = clipWindingStrict(w, planes[n.planeNum].plane, kOnEpsilon);
         int refs = 0;
-        if (front.empty() && back.empty()) {
-            // Lying on the plane: better too many references than too few.
-            refs += winding(w, n.children[0]);
-            refs += winding(w, n.children[1]);
-        }
         if (!front.empty()) refs += winding(front, n.children[0]);
         if (!back.empty()) refs += winding(back, n.children[1]);
         return refs;

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <list>
 #include <unordered_map>
@@ -94,7 +95,10 @@ public:
         const int axis = alongAxis(dir);
         if (axis < 0) {
             general_.push_back(index);
-            generalPlanes_.push_back({e.normal1.x, e.normal1.y, e.normal1.z, e.dist1});
+            planeX_.push_back(e.normal1.x);
+            planeY_.push_back(e.normal1.y);
+            planeZ_.push_back(e.normal1.z);
+            planeDist_.push_back(e.dist1);
         } else {
             const auto [a, b] = otherAxes(axis);
             cells_[cellKey(axis, cellOf(v1[a]), cellOf(v1[b]))].push_back(index);
@@ -145,13 +149,25 @@ private:
     // The smallest index of a line holding both ends, or -1.
     int firstHolding(const Vec3& v1, const Vec3& v2) const {
         int best = std::numeric_limits<int>::max();
-        // Most lines miss the first end on their first plane: that test reads a compact copy.
-        for (size_t i = 0; i < general_.size(); ++i) {
-            const std::array<float, 4>& p = generalPlanes_[i];
-            if (!nearlyEqual(v1.x * p[0] + v1.y * p[1] + v1.z * p[2], p[3], kPointOnLineEpsilon)) continue;
-            if (holds(lines[size_t(general_[i])], v1, v2)) {
-                best = general_[i];
-                break;
+        // Most lines miss the first end on their first plane. That test runs on blocks of lines
+        // without branches (so that it vectorises), a little wider than the exact one, which
+        // decides for the lines it lets through.
+        const size_t count = general_.size();
+        for (size_t block = 0; block < count && best == std::numeric_limits<int>::max(); block += kPlaneBlock) {
+            const size_t end = std::min(count, block + kPlaneBlock);
+            std::array<bool, kPlaneBlock> near{};
+            for (size_t i = block; i < end; ++i)
+                near[i - block] = std::fabs(v1.x * planeX_[i] + v1.y * planeY_[i] + v1.z * planeZ_[i] - planeDist_[i]) <
+                                  kPointOnLineEpsilon + kPlaneFilterSlack;
+            for (size_t word = 0; word < kPlaneBlock && best == std::numeric_limits<int>::max(); word += 8) {
+                uint64_t any = 0;
+                std::memcpy(&any, near.data() + word, sizeof any);
+                if (!any) continue;  // eight lines missed at once
+                for (size_t i = block + word; i < std::min(end, block + word + 8); ++i) {
+                    if (!near[i - block] || !holds(lines[size_t(general_[i])], v1, v2)) continue;
+                    best = general_[i];
+                    break;
+                }
             }
         }
         for (int axis = 0; axis < 3; ++axis) {
@@ -182,7 +198,10 @@ private:
     }
 
     std::vector<int> general_;  // lines not along an axis, in creation order
-    std::vector<std::array<float, 4>> generalPlanes_;  // their first plane (normal1, dist1)
+    // Their first plane (normal1, dist1), one array per component.
+    std::vector<float> planeX_, planeY_, planeZ_, planeDist_;
+    static constexpr size_t kPlaneBlock = 64;
+    static constexpr float kPlaneFilterSlack = 0.01f;
     std::unordered_map<CellKey, std::vector<int>> cells_;
     std::unordered_map<EdgeKey, int, EdgeKeyHash> known_;  // the line of every edge registered
 };

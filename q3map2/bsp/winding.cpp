@@ -1,5 +1,6 @@
 #include "winding.h"
 
+#include <array>
 #include <cfloat>
 #include <cmath>
 
@@ -57,29 +58,43 @@ DVec3 splitPoint(const DVec3& p1, const DVec3& p2, double d1, double d2, const D
     return mid;
 }
 
-struct Classified {
-    std::vector<double> dists;
-    std::vector<PlaneSide> sides;
+// Each point's distance and side, the first point repeated at the end. Held inline for the
+// windings met in practice: clipping is the hottest path of -bsp and must not allocate.
+class Classified {
+public:
+    Classified(const Winding& w, const DPlane& plane, double epsilon, Precision precision) {
+        if (w.size() + 1 > kInline) {
+            heapDists_.resize(w.size() + 1);
+            heapSides_.resize(w.size() + 1);
+            dists = heapDists_.data();
+            sides = heapSides_.data();
+        }
+        for (size_t i = 0; i < w.size(); ++i) {
+            const double d = distanceTo(plane, w[i], precision);
+            dists[i] = d;
+            sides[i] = d > epsilon ? PlaneSide::Front : (d < -epsilon ? PlaneSide::Back : PlaneSide::On);
+            ++counts[int(sides[i])];
+        }
+        dists[w.size()] = dists[0];
+        sides[w.size()] = sides[0];
+    }
+    Classified(const Classified&) = delete;
+    Classified& operator=(const Classified&) = delete;
+
+    double* dists = inlineDists_.data();
+    PlaneSide* sides = inlineSides_.data();
     int counts[3] = {0, 0, 0};
+
+private:
+    static constexpr size_t kInline = 32;
+    std::array<double, kInline> inlineDists_;
+    std::array<PlaneSide, kInline> inlineSides_;
+    std::vector<double> heapDists_;
+    std::vector<PlaneSide> heapSides_;
 };
 
-Classified classify(const Winding& w, const DPlane& plane, double epsilon, Precision precision) {
-    Classified c;
-    c.dists.resize(w.size() + 1);
-    c.sides.resize(w.size() + 1);
-    for (size_t i = 0; i < w.size(); ++i) {
-        const double d = distanceTo(plane, w[i], precision);
-        c.dists[i] = d;
-        c.sides[i] = d > epsilon ? PlaneSide::Front : (d < -epsilon ? PlaneSide::Back : PlaneSide::On);
-        ++c.counts[int(c.sides[i])];
-    }
-    c.dists[w.size()] = c.dists[0];
-    c.sides[w.size()] = c.sides[0];
-    return c;
-}
-
 void chop(Winding& w, const DPlane& plane, double epsilon, Precision precision) {
-    const Classified c = classify(w, plane, epsilon, precision);
+    const Classified c(w, plane, epsilon, precision);
     if (!c.counts[int(PlaneSide::Front)]) {
         w.clear();
         return;
@@ -142,7 +157,7 @@ void chopWindingInPlaceAccurate(Winding& w, const DPlane& plane, double epsilon)
 }
 
 std::pair<Winding, Winding> clipWindingStrict(const Winding& w, const DPlane& plane, double epsilon) {
-    const Classified c = classify(w, plane, epsilon, Precision::Float);
+    const Classified c(w, plane, epsilon, Precision::Float);
     if (!c.counts[int(PlaneSide::Front)] && !c.counts[int(PlaneSide::Back)]) return {};
     if (!c.counts[int(PlaneSide::Front)]) return {Winding{}, w};
     if (!c.counts[int(PlaneSide::Back)]) return {w, Winding{}};

@@ -161,3 +161,16 @@ TEST(MapErrors, LoadMapNamesThePath) {
 TEST(MapErrors, TextureScaleOnNextLine) {
     expectErrorAt("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) a 0 0 0 1\n1\n}\n}\n", 3, "line ends before texture scale T");
 }
+
+// Messages are composed only when reported: the whole text still names the face, point and axis.
+TEST(MapErrors, ComposedMessagesNameEveryPart) {
+    EXPECT_NE(errorOf("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 zero ) a 0 0 0 1 1\n}\n}\n")
+                  .find("expected a number for plane point 3 in face 0 of entity 0, primitive 0 z, found 'zero'"),
+              std::string::npos)
+        << errorOf("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 zero ) a 0 0 0 1 1\n}\n}\n");
+    const std::string patch = errorOf(std::string(kPatchHead) + "( ( 0 0 0 0 0 ) ( 0 1 0 0 0 ) ( 0 2 0 0 x ) )\n");
+    EXPECT_NE(patch.find("control point 2 of column 0 of patchDef2 in entity 0, primitive 0 t"), std::string::npos)
+        << patch;
+    const std::string valve = errorOf("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) a [ 1 0 0 0 ] [ 0 1 0 q ] 0 1 1\n}\n}\n");
+    EXPECT_NE(valve.find("T texture axis in face 0 of entity 0, primitive 0 offset, found 'q'"), std::string::npos) << valve;
+}
