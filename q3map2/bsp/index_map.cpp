@@ -7,6 +7,7 @@
 
 #include "bsp_brushes.h"
 #include "image.h"
+#include "index_map_formats.h"
 #include "log.h"
 #include "map_file.h"
 #include "script.h"
@@ -90,6 +91,12 @@ std::vector<uint8_t> layersFromRed(const Image& image, int layers) {
     return out;
 }
 
+// A palette image's indexes are the layers themselves, the ones past the last layer taking it.
+std::vector<uint8_t> layersFromIndexes(std::vector<uint8_t> indexes, int layers) {
+    for (uint8_t& i : indexes) i = uint8_t(std::min(int(i), layers - 1));
+    return indexes;
+}
+
 std::optional<IndexMap> loadIndexMap(const map::MapEntity& e, const LoadedMap& map, const Vfs* vfs, Log& log) {
     const std::string* file = firstKey(e, {"_indexmap", "alphamap"});
     if (!file || !hasPrimitives(e, map)) return std::nullopt;
@@ -115,26 +122,34 @@ std::optional<IndexMap> loadIndexMap(const map::MapEntity& e, const LoadedMap& m
     }
     im.baseShader = *shader;
     const std::string ext = extensionOf(*file);
-    if (!equalsNoCase(ext, "tga") && !equalsNoCase(ext, "png")) {
-        log.warning(who + ": only .tga and .png index maps are read" + ignored);
+    const bool palette = equalsNoCase(ext, "pcx") || equalsNoCase(ext, "bmp");
+    if (!palette && !equalsNoCase(ext, "tga") && !equalsNoCase(ext, "png")) {
+        log.warning(who + ": only .tga, .png, .pcx and .bmp index maps are read" + ignored);
         return std::nullopt;
     }
     if (!vfs) throw CompileError(who + ": no game file system to read it from");
     const std::optional<std::vector<uint8_t>> bytes = vfs->read(*file);
     if (!bytes) throw CompileError(who + " not found in the game folders");
-    Image image;
     try {
-        image = decodeImage(*bytes, *file);
+        if (palette) {
+            PaletteIndexes image = equalsNoCase(ext, "pcx") ? decodePcxIndexes(*bytes, *file)
+                                                            : decodeBmpIndexes(*bytes, *file);
+            im.width = image.width;
+            im.height = image.height;
+            im.pixels = layersFromIndexes(std::move(image.pixels), im.layers);
+        } else {
+            const Image image = decodeImage(*bytes, *file);
+            im.width = image.width;
+            im.height = image.height;
+            im.pixels = layersFromRed(image, im.layers);
+        }
     } catch (const ImageError& err) {
         throw CompileError(who + ": " + err.what());
     }
-    if (image.width < 2 || image.height < 2) {
+    if (im.width < 2 || im.height < 2) {
         log.warning(who + " is smaller than 2x2 pixels" + ignored);
         return std::nullopt;
     }
-    im.width = image.width;
-    im.height = image.height;
-    im.pixels = layersFromRed(image, im.layers);
     if (const std::string* offsets = firstKey(e, {"_offsets", "offsets"})) parseOffsets(*offsets, im);
     im.bounds = entityBounds(e, map);
     log.debug(entityName(e) + " has shader index map \"" + *file + "\"");

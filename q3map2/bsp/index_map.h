@@ -56,9 +56,10 @@ struct IndexMap {
     std::string layerShaderName(const LayeredVertices& v) const;
 };
 
-// Index maps by .map entity number (nullptr for entities without one). A missing or unreadable
-// image stops the compile (as in q3map2); missing or bad keys, an unsupported image format and an
-// image under 2x2 pixels are warnings naming the entity, and the entity is left unlayered.
+// Index maps by .map entity number (nullptr for entities without one). A .tga or .png gives the
+// layer of a pixel from its red channel, a .pcx or .bmp (8-bit) from its palette index. A missing
+// or unreadable image stops the compile (as in q3map2); missing or bad keys, another image format
+// (.lbm) and an image under 2x2 pixels are warnings naming the entity, which is left unlayered.
 std::vector<std::unique_ptr<IndexMap>> loadIndexMaps(const map::MapFile& file, const LoadedMap& map, const Vfs* vfs,
                                                      Log& log);
 

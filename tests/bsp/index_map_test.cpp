@@ -1,10 +1,13 @@
 // The index map's pixel look-up, layer blending and layer shader names (q3map2
-// GetShaderIndexForPoint, GetIndexedShader) on a hand-made 4x2 map.
+// GetShaderIndexForPoint, GetIndexedShader) on a hand-made 4x2 map, and the 8-bit PCX and BMP
+// readers (q3map2 LoadPCX, LoadBMP) on hand-made files.
 #include <gtest/gtest.h>
 
 #include <vector>
 
+#include "image.h"
 #include "index_map.h"
+#include "index_map_formats.h"
 
 namespace q3::bspstage {
 namespace {
@@ -56,6 +59,61 @@ TEST(IndexMap, TheHighestLayerIsOpaqueAndNamesTheShader) {
     const LayeredVertices same = im.layer(one);
     EXPECT_EQ(same.alpha, (std::vector<uint8_t>{255, 255, 255}));
     EXPECT_EQ(im.layerShaderName(same), "textures/t/ground_2");
+}
+
+// A 3x2 PCX (xmax 2, ymax 1) with `lineBytes` bytes per scan line and the given RLE data.
+std::vector<uint8_t> pcx(int lineBytes, std::vector<uint8_t> data) {
+    std::vector<uint8_t> out(128, 0);
+    out[0] = 0x0a;
+    out[1] = 5;
+    out[2] = 1;
+    out[3] = 8;
+    out[8] = 2;   // xmax
+    out[10] = 1;  // ymax
+    out[65] = 1;  // one plane
+    out[66] = uint8_t(lineBytes);
+    out.insert(out.end(), data.begin(), data.end());
+    return out;
+}
+
+TEST(IndexMapFormats, PcxRunsAndScanLinePadding) {
+    // Row 0: a run of two 7s and a literal 1, then one padding run skipped; row 1: a run of three 0xc5.
+    const PaletteIndexes p = decodePcxIndexes(pcx(4, {0xc2, 7, 1, 9, 0xc3, 0xc5, 0}), "a.pcx");
+    EXPECT_EQ(p.width, 3);
+    EXPECT_EQ(p.height, 2);
+    EXPECT_EQ(p.pixels, (std::vector<uint8_t>{7, 7, 1, 0xc5, 0xc5, 0xc5}));
+    // A run past the end of a row spills into the next one, which overwrites it.
+    EXPECT_EQ(decodePcxIndexes(pcx(3, {0xc4, 2, 3, 4, 5}), "b.pcx").pixels,
+              (std::vector<uint8_t>{2, 2, 2, 3, 4, 5}));
+    EXPECT_THROW(decodePcxIndexes(pcx(3, {0xc4}), "short.pcx"), ImageError);
+    std::vector<uint8_t> wrongVersion = pcx(3, {1, 2, 3, 4, 5, 6});
+    wrongVersion[1] = 3;
+    EXPECT_THROW(decodePcxIndexes(wrongVersion, "v3.pcx"), ImageError);
+}
+
+// A 2x2 8-bit BMP (40-byte header, no palette) of `height` (negative: top-down) and pixel rows.
+std::vector<uint8_t> bmp(int32_t height, std::vector<uint8_t> rows, uint16_t bits = 8) {
+    std::vector<uint8_t> out(54, 0);
+    auto put32 = [&](size_t at, uint32_t v) {
+        for (int i = 0; i < 4; ++i) out[at + size_t(i)] = uint8_t(v >> (8 * i));
+    };
+    out[0] = 'B';
+    out[1] = 'M';
+    put32(10, 54);  // pixel data offset
+    put32(14, 40);
+    put32(18, 2);
+    put32(22, uint32_t(height));
+    out[26] = 1;
+    out[28] = uint8_t(bits);
+    out.insert(out.end(), rows.begin(), rows.end());
+    return out;
+}
+
+TEST(IndexMapFormats, BmpRowsInFileOrderUnlessTopDown) {
+    EXPECT_EQ(decodeBmpIndexes(bmp(2, {1, 2, 3, 4}), "up.bmp").pixels, (std::vector<uint8_t>{1, 2, 3, 4}));
+    EXPECT_EQ(decodeBmpIndexes(bmp(-2, {1, 2, 3, 4}), "down.bmp").pixels, (std::vector<uint8_t>{3, 4, 1, 2}));
+    EXPECT_THROW(decodeBmpIndexes(bmp(2, {1, 2, 3}), "short.bmp"), ImageError);
+    EXPECT_THROW(decodeBmpIndexes(bmp(2, {1, 2, 3, 4}, 24), "rgb.bmp"), ImageError);
 }
 
 }  // namespace
