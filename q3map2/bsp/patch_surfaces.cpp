@@ -151,8 +151,8 @@ void applyPatchShading(DrawSurface& ds, const BspEntity& entity, const EntitySur
         layers = params.indexMap->layer(points);
         ds.shader = &terrain->layerShader(*ds.shader, params.indexMap->layerShaderName(*layers));
     }
-    const TextureSize size = terrain ? terrain->sizeOf(*ds.shader) : kDefaultTextureSize;
-    const std::optional<GeneratedProjection> generated = generatedProjection(*ds.shader, size);
+    const std::optional<GeneratedProjection> generated =
+        terrain ? terrain->projectionOf(*ds.shader) : generatedProjection(*ds.shader, kDefaultTextureSize);
     for (size_t v = 0; v < ds.verts.size(); ++v) {
         bsp::DrawVert& dv = ds.verts[v];
         if (generated) {

@@ -19,6 +19,11 @@ TextureSize TerrainShaders::sizeOf(const ShaderInfo& shader) {
     return sizes_.of(shader);
 }
 
+std::optional<GeneratedProjection> TerrainShaders::projectionOf(const ShaderInfo& shader) {
+    const bool measured = shader.legacyTerrain && !shader.tcGen;
+    return generatedProjection(shader, measured ? sizeOf(shader) : kDefaultTextureSize);
+}
+
 const ShaderInfo& TerrainShaders::layerShader(const ShaderInfo& parent, const std::string& name) {
     const ShaderInfo& found = table_.find(name);
     std::unique_ptr<ShaderInfo>& copy = copies_[&found];
@@ -40,7 +45,7 @@ const ShaderInfo& TerrainShaders::layerShader(const ShaderInfo& parent, const st
     if (parent.nonplanar) layer.nonplanar = true;
     if (layer.shadeAngleDegrees == 0) layer.shadeAngleDegrees = parent.shadeAngleDegrees;
     if (!layer.tcGen)
-        if (const std::optional<GeneratedProjection> p = generatedProjection(parent, sizeOf(parent))) {
+        if (const std::optional<GeneratedProjection> p = projectionOf(parent)) {
             layer.tcGen = true;
             layer.tcGenVectors[0] = p->s;
             layer.tcGenVectors[1] = p->t;

@@ -45,6 +45,8 @@ public:
     const ShaderInfo& layerShader(const ShaderInfo& parent, const std::string& name);
     // The texture size of a shader, measured on first use when the compile did not measure it.
     TextureSize sizeOf(const ShaderInfo& shader);
+    // generatedProjection() with the shader's size, measured only for a q3map_terrain one.
+    std::optional<GeneratedProjection> projectionOf(const ShaderInfo& shader);
 
 private:
     const ShaderTable& table_;
