@@ -33,6 +33,8 @@ void rotationSinCos(double degrees, double& sinv, double& cosv) {
     }
 }
 
+int shiftModulus(int given, int imageSize) { return given > 0 ? given : imageSize; }
+
 TextureVecs standardVectors(const TexStandard& tex, const MapPlane& plane, const TextureImage& image) {
     requireImage(image);
     Vec3 axes[2];
@@ -54,10 +56,11 @@ TextureVecs standardVectors(const TexStandard& tex, const MapPlane& plane, const
 
     const double scale[2] = {tex.scale[0] != 0 ? tex.scale[0] : 1.0, tex.scale[1] != 0 ? tex.scale[1] : 1.0};
     const int size[2] = {image.width, image.height};
+    const int shiftSize[2] = {shiftModulus(image.shiftWidth, image.width), shiftModulus(image.shiftHeight, image.height)};
     TextureVecs out;
     for (int i = 0; i < 2; ++i) {
         double shift = tex.shift[i];
-        if (!image.globalTexture) shift -= std::floor(shift / size[i]) * size[i];
+        if (!image.globalTexture) shift -= std::floor(shift / shiftSize[i]) * shiftSize[i];
         for (int j = 0; j < 3; ++j) out.vecs[i][j] = vec[i][j] / scale[i] / size[i];
         out.vecs[i][3] = shift / size[i];
     }
@@ -67,12 +70,13 @@ TextureVecs standardVectors(const TexStandard& tex, const MapPlane& plane, const
 TextureVecs valveVectors(const TexValve& tex, const TextureImage& image) {
     requireImage(image);
     const int size[2] = {image.width, image.height};
+    const int shiftSize[2] = {shiftModulus(image.shiftWidth, image.width), shiftModulus(image.shiftHeight, image.height)};
     TextureVecs out;
     for (int i = 0; i < 2; ++i) {
         const double scale = tex.scale[i] != 0 ? tex.scale[i] : 1.0;
         for (int j = 0; j < 3; ++j) out.vecs[i][j] = tex.axis[i][j] / scale / size[i];
         double shift = tex.offset[i];
-        if (!image.globalTexture) shift -= std::floor(shift / size[i]) * size[i];
+        if (!image.globalTexture) shift -= std::floor(shift / shiftSize[i]) * shiftSize[i];
         out.vecs[i][3] = shift / size[i];
     }
     return out;

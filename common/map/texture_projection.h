@@ -22,6 +22,11 @@ struct TextureImage {
     // Shaders with q3map_globalTexture keep their shifts as written; others have the shift reduced
     // modulo the image size (same mapping, smaller coordinates), as q3map2 does.
     bool globalTexture = false;
+    // The size shifts are reduced modulo when it is not the image's (0: the image's): q3map2 reduces
+    // them with the face's own shader as it reads the map, and a layer shader of indexed terrain may
+    // have another image size.
+    int shiftWidth = 0;
+    int shiftHeight = 0;
 };
 
 // The base axes q3map2 projects a Standard face onto: the first of floor, ceiling, west, east,

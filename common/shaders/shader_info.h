@@ -205,6 +205,8 @@ struct ShaderInfo {
     bool lightmapMergable = false;         // q3map_lightmapMergable
     bool nonplanar = false;                // q3map_nonplanar
     bool forceMeta = false;                // q3map_forceMeta
+    bool indexed = false;                  // q3map_indexed / q3map_terrain: layered by an entity's _indexmap
+    bool legacyTerrain = false;            // q3map_terrain: without q3map_tcGen, st from x and y
     bool clipModel = false;                // q3map_clipModel: misc_models with it get clip brushes
     float shadeAngleDegrees = 0;           // q3map_shadeAngle; 0 = no phong shading
     float vertexScale = 1;                 // product of q3map_vertexScale factors

@@ -15,8 +15,8 @@ namespace {
 // q3map_* directives q3map2 understands that no stage of this compiler uses yet. They are
 // recognised so that they are not mistaken for q3map_<surfaceparm>; their arguments are skipped
 // with the rest of the line.
-constexpr std::array<std::string_view, 8> kIgnoredQ3mapDirectives = {
-    "q3map_surfacemodel", "q3map_fur",           "q3map_indexed",         "q3map_patchShadows",
+constexpr std::array<std::string_view, 7> kIgnoredQ3mapDirectives = {
+    "q3map_surfacemodel", "q3map_fur",           "q3map_patchShadows",
     "q3map_vertexShadows", "q3map_noVertexShadows", "q3map_clipModel", "q3map_material",
 };
 
@@ -308,10 +308,17 @@ private:
         } else if (is("q3map_noVertexLight")) {
             shader.noVertexLight = true;
         } else if (is("q3map_terrain")) {
-            // Team Arena terrain: non-planar meta surfaces with full normal smoothing.
+            // Team Arena terrain: indexed, unclipped, non-planar meta surfaces with full normal
+            // smoothing and (without a q3map_tcGen) a texture projected from above.
+            shader.legacyTerrain = true;
+            shader.indexed = true;
+            shader.noClip = true;
+            shader.noTJunc = true;
             shader.nonplanar = true;
             shader.forceMeta = true;
             shader.shadeAngleDegrees = 179.0f;
+        } else if (is("q3map_indexed")) {
+            shader.indexed = true;
         } else if (is("q3map_forceMeta")) {
             shader.forceMeta = true;
         } else if (is("q3map_clipModel")) {

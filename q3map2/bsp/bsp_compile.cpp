@@ -12,6 +12,7 @@
 #include "face_subdivide.h"
 #include "fog_hull.h"
 #include "fog_volumes.h"
+#include "index_map.h"
 #include "log.h"
 #include "max_area_triangles.h"
 #include "model_surfaces.h"
@@ -25,6 +26,7 @@
 #include "structure_emit.h"
 #include "surface_filter.h"
 #include "surface_triangles.h"
+#include "terrain_shaders.h"
 #include "tjunctions.h"
 #include "visible_hull.h"
 
@@ -66,7 +68,7 @@ void debugCounts(Log& log, std::initializer_list<std::pair<int, const char*>> co
 // -meta and forced-meta shaders (q3map2 MakeEntityMetaTriangles ... MergeMetaTriangles), and the
 // collision patches -patchmeta leaves.
 void makeMeta(ModelContext& c, const BspEntity& entity, std::vector<DrawSurface>& surfaces) {
-    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.in.textures, c.options.classify, c.random,
+    const meta::MetaInputs inputs{*entity.source, c.in.map.planes, c.faces.textures, c.options.classify, c.random,
                                   &c.in.shaders};
     const meta::MetaCounts m = meta::makeMetaSurfaces(surfaces, inputs, c.options.meta, c.log);
     if (m.metaSurfaces > 0 || m.patchMeta > 0) {
@@ -195,10 +197,15 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
     // q3map2 would write a BSP without a world model, which no engine loads.
     if (map.entities.front().brushes.empty() && map.entities.front().patches.empty())
         throw CompileError(in.file.name + ": the world has no brushes or patches, nothing to compile");
-    const std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
+    std::vector<EntitySurfaceParams> params = entitySurfaceParams(in.file);
+    const std::vector<std::unique_ptr<IndexMap>> indexMaps = loadIndexMaps(in.file, map, in.vfs, log);
+    for (size_t i = 0; i < indexMaps.size() && i < params.size(); ++i) params[i].indexMap = indexMaps[i].get();
+    // Layer shaders of index-mapped terrain are found while faces are made; their sizes join these.
+    TextureSizes textures = in.textures;
+    TerrainShaders terrain(in.shaders, textures, in.vfs, map, log);
     std::vector<std::unique_ptr<DrawSurface>> written;
-    const FaceContext faces{map.planes, in.textures, options.brushSnap, options.skyFix ? &in.shaders : nullptr,
-                            &written};
+    const FaceContext faces{map.planes, textures, options.brushSnap, options.skyFix ? &in.shaders : nullptr,
+                            &written, &terrain};
     BspBuilder builder(map, in.shaders);
     MapFogs fogs;
     if (options.fog) {
@@ -219,7 +226,7 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
         log.debug("############### model " + std::to_string(builder.bsp().models.size()) + " ###############");
         builder.beginModel(e);
         PatchCounts patchCounts;
-        std::vector<DrawSurface> surfaces = patchSurfaces(e, in.shaders, map.planes, params, log, &patchCounts);
+        std::vector<DrawSurface> surfaces = patchSurfaces(e, in.shaders, map.planes, params, log, &patchCounts, &terrain);
         log.debug(countLine(patchCounts.patches, "patches"));
         log.debug(countLine(patchCounts.lodGroups, "patch LOD groups"));
         if (i == 0) {

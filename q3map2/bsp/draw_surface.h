@@ -17,6 +17,8 @@ struct ShaderInfo;
 
 namespace q3::bspstage {
 
+struct IndexMap;
+
 inline Vec3 xyzOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.xyz); }
 inline Vec3 normalOf(const bsp::DrawVert& v) { return Vec3::fromArray(v.normal); }
 
@@ -102,6 +104,7 @@ struct EntitySurfaceParams {
     // _color (zero or missing: white) x _ambient / ambient: the ambient light -light gives the
     // entity's lightmaps and vertexes (the .srf ambientColor; the worldspawn's is the default block's).
     Vec3 ambientColor{0, 0, 0};
+    const IndexMap* indexMap = nullptr;  // _indexmap: layers its q3map_indexed faces and patches
 };
 
 }  // namespace q3::bspstage

@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
+#include "index_map.h"
 #include "script.h"
 #include "shader_info.h"
+#include "terrain_shaders.h"
 #include "texture_projection.h"
 
 namespace q3::bspstage {
@@ -144,7 +147,16 @@ DrawSurface faceSurface(const BspEntity& entity, int brushIndex, int sideIndex, 
                         const EntitySurfaceParams& params, const FaceContext& context, bool backFace) {
     const Brush& brush = entity.brushes[size_t(brushIndex)];
     const BrushSide& side = brush.sides[size_t(sideIndex)];
-    const ShaderInfo& shader = *side.shader;
+    // Each vertex takes its layer from the index map where the winding lies, before snapping.
+    std::optional<LayeredVertices> layers;
+    const ShaderInfo* layerShader = nullptr;
+    if (params.indexMap && side.shader->indexed && context.terrain) {
+        std::vector<Vec3> points;
+        for (const DVec3& p : winding) points.push_back(p.toFloat());
+        layers = params.indexMap->layer(points);
+        layerShader = &context.terrain->layerShader(*side.shader, params.indexMap->layerShaderName(*layers));
+    }
+    const ShaderInfo& shader = layerShader ? *layerShader : *side.shader;
     const int planeNum = backFace ? side.planeNum ^ 1 : side.planeNum;
     const MapPlane& plane = context.planes[planeNum];
 
@@ -164,34 +176,40 @@ DrawSurface faceSurface(const BspEntity& entity, int brushIndex, int sideIndex, 
     ds.lightmapScale = params.lightmapScale;
     ds.shadeAngle = params.shadeAngle;
 
+    const TextureSize size = layerShader ? context.terrain->sizeOf(shader) : context.textures.of(shader);
+    const std::optional<GeneratedProjection> generated = generatedProjection(shader, size);
     map::TextureVecs vecs;
-    if (!shader.tcGen && side.face) {
+    if (!generated && side.face) {
         // The projection belongs to the side as the map wrote it, also on a fog face's back copy.
         const MapPlane& sidePlane = context.planes[side.planeNum];
         map::MapPlane mapPlane;
         for (int i = 0; i < 3; ++i) mapPlane.normal[i] = sidePlane.normal()[i];
         mapPlane.dist = sidePlane.dist();
-        const TextureSize size = context.textures.of(shader);
-        vecs = map::textureVectors(*side.face, mapPlane, {size.width, size.height, shader.globalTexture});
+        // The shift was reduced by the side's own shader when the map was read (q3map2 ParseRawBrush).
+        const TextureSize own = layerShader ? context.textures.of(*side.shader) : size;
+        vecs = map::textureVectors(*side.face, mapPlane,
+                                   {size.width, size.height, side.shader->globalTexture, own.width, own.height});
     }
     ds.verts.reserve(winding.size());
-    for (const DVec3& p : winding) {
+    for (size_t i = 0; i < winding.size(); ++i) {
         bsp::DrawVert dv{};
-        DVec3 xyz = roundToFloat(p);
+        DVec3 xyz = roundToFloat(winding[i]);
+        if (layers) xyz.z = double(float(xyz.z) + layers->zOffset[i]);
         if (context.brushSnap) xyz = {snapEighth(xyz.x), snapEighth(xyz.y), snapEighth(xyz.z)};
         xyz = roundToFloat(xyz);
         xyz.toFloat().toArray(dv.xyz);
         // Textures stay where the map put them when an origin brush moved the entity's brushes.
         const Vec3 world = (xyz + entity.originBrushCenter).toFloat();
-        if (shader.tcGen) {
-            dv.st[0] = dot(shader.tcGenVectors[0], world);
-            dv.st[1] = dot(shader.tcGenVectors[1], world);
+        if (generated) {
+            dv.st[0] = dot(generated->s, world);
+            dv.st[1] = dot(generated->t, world);
         } else {
             dv.st[0] = float(vecs.s(world));
             dv.st[1] = float(vecs.t(world));
         }
         ds.planeNormal.toArray(dv.normal);
         for (uint8_t& c : dv.color) c = 255;
+        if (layers) dv.color[3] = layers->alpha[i];
         ds.verts.push_back(dv);
     }
     return ds;
@@ -232,7 +250,8 @@ void addFaceSurfaces(const BspEntity& entity, const FaceContext& context,
             if (side.winding.empty() || side.visibleHull.empty() || !side.shader || side.culled) continue;
             const ShaderInfo& shader = *side.shader;
             const bool fog = (shader.compileFlags & compileflags::Fog) != 0;
-            if (shader.isNoDraw() && !fog) continue;
+            // Indexed terrain shaders are often nodraw: their faces take a layer shader instead.
+            if (shader.isNoDraw() && !fog && !shader.indexed) continue;
             const Winding& w = shader.autosprite || shader.noClip ? side.winding : side.visibleHull;
             addSkyFixSurfaces(shader, context, out);
             out.push_back(faceSurface(entity, int(b), int(s), w, params, context));

@@ -15,6 +15,8 @@
 
 namespace q3::bspstage {
 
+class TerrainShaders;
+
 struct CullCounts {
     int hidden = 0;      // sides inside another brush
     int coincident = 0;  // sides facing another side with the same winding
@@ -32,6 +34,7 @@ struct FaceContext {
     // (a shader-only surface is made once per shader in the whole BSP).
     const ShaderTable* skyFixShaders = nullptr;
     const std::vector<std::unique_ptr<DrawSurface>>* earlierSurfaces = nullptr;
+    TerrainShaders* terrain = nullptr;  // layer shaders of index-mapped entities; nullptr: none layered
 };
 
 // The lighting keys of a .map entity; `worldGroup` for the world and func_groups.
@@ -45,8 +48,8 @@ DrawSurface faceSurface(const BspEntity& entity, int brushIndex, int sideIndex, 
                         const EntitySurfaceParams& params, const FaceContext& context, bool backFace = false);
 
 // Face surfaces of every side with a visible hull (after clipSidesIntoTree), in brush and side order:
-// none for culled sides and nodraw shaders (fog excepted); autosprite and q3map_noClip faces use the
-// whole winding; fog faces get a reversed copy too. `paramsByMapEntity` holds the lighting keys of
+// none for culled sides and nodraw shaders (fog and q3map_indexed excepted); autosprite and
+// q3map_noClip faces use the whole winding; fog faces get a reversed copy too. `paramsByMapEntity` holds the lighting keys of
 // every .map entity, by entity number.
 void addFaceSurfaces(const BspEntity& entity, const FaceContext& context,
                      const std::vector<EntitySurfaceParams>& paramsByMapEntity, std::vector<DrawSurface>& out);

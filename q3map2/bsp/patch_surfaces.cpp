@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "index_map.h"
 #include "log.h"
 #include "patch.h"
 #include "shader_info.h"
+#include "terrain_shaders.h"
 
 namespace q3::bspstage {
 namespace {
@@ -135,9 +138,39 @@ bool isDegeneratePatch(const map::MapPatch& patch) {
     return true;
 }
 
+namespace {
+
+// After the plane is found (from the unmoved control points): the layer shader and alphas of an
+// index-mapped patch, the shader's generated texture projection, then the layers' height offsets.
+void applyPatchShading(DrawSurface& ds, const BspEntity& entity, const EntitySurfaceParams& params,
+                       TerrainShaders* terrain) {
+    std::optional<LayeredVertices> layers;
+    if (params.indexMap && ds.shader->indexed && terrain) {
+        std::vector<Vec3> points;
+        for (const bsp::DrawVert& dv : ds.verts) points.push_back(xyzOf(dv));
+        layers = params.indexMap->layer(points);
+        ds.shader = &terrain->layerShader(*ds.shader, params.indexMap->layerShaderName(*layers));
+    }
+    const std::optional<GeneratedProjection> generated =
+        terrain ? terrain->projectionOf(*ds.shader) : generatedProjection(*ds.shader, kDefaultTextureSize);
+    for (size_t v = 0; v < ds.verts.size(); ++v) {
+        bsp::DrawVert& dv = ds.verts[v];
+        if (generated) {
+            const Vec3 world = xyzOf(dv) + entity.origin.toFloat();
+            dv.st[0] = dot(generated->s, world);
+            dv.st[1] = dot(generated->t, world);
+        }
+        if (!layers) continue;
+        dv.color[3] = layers->alpha[v];
+        dv.xyz[2] += layers->zOffset[v];
+    }
+}
+
+}  // namespace
+
 std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTable& shaders, PlaneSet& planes,
                                        const std::vector<EntitySurfaceParams>& paramsByMapEntity, Log& log,
-                                       PatchCounts* counts) {
+                                       PatchCounts* counts, TerrainShaders* terrain) {
     std::vector<const PatchRef*> kept;
     for (const PatchRef& ref : entity.patches) {
         if (isDegeneratePatch(*ref.patch)) {
@@ -213,6 +246,7 @@ std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTabl
             ds.planeNormal = normal;
             for (bsp::DrawVert& dv : ds.verts) normal.toArray(dv.normal);
         }
+        applyPatchShading(ds, entity, params, terrain);
         out.push_back(std::move(ds));
     }
     if (counts) {

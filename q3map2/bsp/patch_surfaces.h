@@ -16,6 +16,8 @@ class ShaderTable;
 
 namespace q3::bspstage {
 
+class TerrainShaders;
+
 // Vertex normals of a control grid as q3map2 computes them (MakeMeshNormals): at each point, the
 // average of the normals of the triangles it forms with its eight neighbour directions (stepping up
 // to three points past coincident ones; rows and columns that close on themselves wrap around).
@@ -37,9 +39,11 @@ struct PatchCounts {
     int lodGroups = 0;
 };
 
-// Surfaces for the entity's patches in list order. Flat patches get a plane in `planes`.
+// Surfaces for the entity's patches in list order. Flat patches get a plane in `planes`. Patches of
+// an index-mapped entity with a q3map_indexed shader take their layer shader from `terrain` (none
+// when nullptr), layer alphas and height offsets on their control points.
 std::vector<DrawSurface> patchSurfaces(const BspEntity& entity, const ShaderTable& shaders, PlaneSet& planes,
                                        const std::vector<EntitySurfaceParams>& paramsByMapEntity, Log& log,
-                                       PatchCounts* counts = nullptr);
+                                       PatchCounts* counts = nullptr, TerrainShaders* terrain = nullptr);
 
 }  // namespace q3::bspstage

@@ -31,6 +31,7 @@ public:
     // The size of a shader given to load(); the default size for any other.
     TextureSize of(const ShaderInfo& shader) const;
     void set(const ShaderInfo& shader, TextureSize size) { sizes_[&shader] = size; }
+    bool contains(const ShaderInfo& shader) const { return sizes_.count(&shader) != 0; }
 
 private:
     std::map<const ShaderInfo*, TextureSize> sizes_;

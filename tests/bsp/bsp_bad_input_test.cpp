@@ -3,6 +3,7 @@
 // crash. What q3map2 2.5.17n does with the same maps is noted at each test.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -261,6 +262,65 @@ TEST(BspBadInput, AMissingMapFileIsAnError) {
     EXPECT_EQ(status, 1) << output;
     EXPECT_NE(output.find("ERROR:"), std::string::npos) << output;
     EXPECT_NE(output.find("nowhere.map"), std::string::npos) << output;
+}
+
+// A func_group of one q3map_terrain brush with the index map keys given, its shader script and a
+// 2x2 index map at maps/idx.tga.
+Compiled compileTerrain(const std::string& keys) {
+    const std::string group = "{\n\"classname\" \"func_group\"\n" + keys +
+                              test::boxBrush({64, 64, 0}, {192, 192, 32}, "test/terrain") + "}\n";
+    std::string tga(18, '\0');
+    tga[2] = 2;    // uncompressed true colour
+    tga[12] = 2;   // 2x2 pixels
+    tga[14] = 2;
+    tga[16] = 24;  // bits per pixel
+    tga += std::string(12, '\x80');
+    return compile(roomWith("", group), {{"scripts/terrain.shader", "textures/test/terrain\n{\n\tq3map_terrain\n}\n"},
+                                         {"maps/idx.tga", tga}});
+}
+
+// The shader lump's names that start with `prefix` (brush sides name their own shaders there too).
+std::vector<std::string> shadersStartingWith(const bsp::Bsp& out, const std::string& prefix) {
+    std::vector<std::string> found;
+    for (const bsp::Shader& s : out.shaders) {
+        std::string name(s.name, strnlen(s.name, sizeof s.name));
+        if (name.rfind(prefix, 0) == 0) found.push_back(std::move(name));
+    }
+    return found;
+}
+
+// q3map2: "Couldn't read maps/none.tga" and no BSP.
+TEST(BspBadInput, AMissingIndexMapIsAnError) {
+    failsCleanly(compileTerrain("\"_indexmap\" \"maps/none.tga\"\n\"_layers\" \"2\"\n\"_shader\" \"test/t\"\n"),
+                 "index map \"maps/none.tga\" not found");
+}
+
+// q3map2 warns ("has < 1 layer", "has missing \"_shader\"") and leaves the entity unlayered; it takes
+// any larger count, which the one-byte pixels cannot address: here that is refused the same way.
+TEST(BspBadInput, BadIndexMapKeysAreWarningsAndLeaveTheTerrainUnlayered) {
+    const struct {
+        std::string keys, warning;
+    } cases[] = {
+        {"\"_layers\" \"0\"\n\"_shader\" \"test/t\"\n", "has 0 layers, not 1 to 256"},
+        {"\"_layers\" \"300\"\n\"_shader\" \"test/t\"\n", "has 300 layers, not 1 to 256"},
+        {"\"_shader\" \"test/t\"\n", "has no \"_layers\" or \"layers\" key"},
+        {"\"layers\" \"2\"\n", "has no \"_shader\" or \"shader\" key"},
+    };
+    for (const auto& c : cases) {
+        const Compiled run = compileTerrain("\"_indexmap\" \"maps/idx.tga\"\n" + c.keys);
+        EXPECT_TRUE(run.says("WARNING: Entity 2 (func_group): index map \"maps/idx.tga\" " + c.warning +
+                             ", the entity is not layered"))
+            << run.output;
+        const bsp::Bsp out = compiledOk(run);
+        EXPECT_TRUE(shadersStartingWith(out, "textures/test/t_").empty()) << c.keys;
+    }
+}
+
+// The same keys with a valid count layer the terrain: every pixel is 0x80, layer 1 of 2.
+TEST(BspBadInput, ValidIndexMapKeysLayerTheTerrain) {
+    const Compiled run = compileTerrain("\"_indexmap\" \"maps/idx.tga\"\n\"layers\" \"2\"\n\"shader\" \"test/t\"\n");
+    const bsp::Bsp out = compiledOk(run);
+    EXPECT_EQ(shadersStartingWith(out, "textures/test/t_"), std::vector<std::string>{"textures/test/t_1"});
 }
 
 }  // namespace

@@ -79,11 +79,16 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
 }
 
 fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
+    return referenceSampleCompileWith(reference, name, sampleOptions(name), work);
+}
+
+fs::path referenceSampleCompileWith(const fs::path& reference, const std::string& name,
+                                    const std::vector<std::string>& args, const fs::path& work) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
     std::string options;
-    for (const std::string& arg : sampleOptions(name)) options += " " + shellQuote(arg);
+    for (const std::string& arg : args) options += " " + shellQuote(arg);
     std::string output;
     const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
                                       " -fs_basegame samples -bsp" + options + " " +
@@ -94,10 +99,15 @@ fs::path referenceSampleCompile(const fs::path& reference, const std::string& na
 }
 
 SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name) {
+    return compileSampleBothWaysWith(reference, name, sampleOptions(name));
+}
+
+SampleCompiles compileSampleBothWaysWith(const fs::path& reference, const std::string& name,
+                                         const std::vector<std::string>& args) {
     SampleCompiles out;
     out.work = q3::test::tempDir() / (name + "-" + std::to_string(::getpid()));
-    out.ours = compileSample(name, out.work / "ours");
-    out.theirs = referenceSampleCompile(reference, name, out.work / "ref");
+    out.ours = compileSampleWith(name, args, out.work / "ours");
+    out.theirs = referenceSampleCompileWith(reference, name, args, out.work / "ref");
     return out;
 }
 

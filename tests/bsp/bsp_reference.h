@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "bsp_options.h"
 #include "shader_info.h"
@@ -25,6 +27,10 @@ std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const s
 // (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
 std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
                                              const std::filesystem::path& work);
+// The same with the options given instead of the sample's own.
+std::filesystem::path referenceSampleCompileWith(const std::filesystem::path& reference, const std::string& name,
+                                                 const std::vector<std::string>& args,
+                                                 const std::filesystem::path& work);
 
 // The sample `name` compiled by ours (compileSample) and by the reference (referenceSampleCompile),
 // each in its own folder under `work`, a scratch folder named after the sample and the process:
@@ -33,6 +39,9 @@ struct SampleCompiles {
     std::filesystem::path work, ours, theirs;
 };
 SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name);
+// Both ways with the options given instead of the sample's own.
+SampleCompiles compileSampleBothWaysWith(const std::filesystem::path& reference, const std::string& name,
+                                         const std::vector<std::string>& args);
 
 // Test expectations on a sample compiled both ways: every lump but the entities (which record the
 // command line) byte for byte, and the same .srf and .prt.

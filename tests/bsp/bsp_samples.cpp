@@ -42,6 +42,11 @@ std::vector<std::string> sampleOptions(const std::string& name) {
 }
 
 fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
+    return compileSampleWith(name, sampleOptions(name), work, log);
+}
+
+fs::path compileSampleWith(const std::string& name, const std::vector<std::string>& args, const fs::path& work,
+                           Log* log) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
@@ -49,7 +54,6 @@ fs::path compileSample(const std::string& name, const fs::path& work, Log* log) 
     common.basePaths.push_back(work.string());
     common.baseGame = "samples";
     common.mapPath = work / "samples" / "maps" / (name + ".bsp");
-    const std::vector<std::string> args = sampleOptions(name);
     common.commandLine = "-bsp";
     for (const std::string& arg : args) common.commandLine += " " + arg;
     BspOptions options;

@@ -26,5 +26,8 @@ std::vector<std::string> sampleOptions(const std::string& name);
 // Copies the sample game folder under `work` and runs -bsp on the sample there (quiet); returns the
 // folder holding the outputs. Throws what the stage throws. Messages go to `log` when given.
 std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work, Log* log = nullptr);
+// The same with the options given instead of the sample's own.
+std::filesystem::path compileSampleWith(const std::string& name, const std::vector<std::string>& args,
+                                        const std::filesystem::path& work, Log* log = nullptr);
 
 }  // namespace q3::bspstage::test

@@ -65,6 +65,11 @@ TEST(TextureProjection, StandardWallsRotationScaleAndShift) {
         textureVectors(standardFace(80, -16, 0, 1, 1), planeWithNormal(0, 0, 1), {64, 32, true});
     EXPECT_DOUBLE_EQ(global.vecs[0][3], 80.0 / 64);
     EXPECT_DOUBLE_EQ(global.vecs[1][3], -16.0 / 32);
+    // Reduced modulo another size (the face's own shader's), then divided by the image's.
+    const TextureVecs layered =
+        textureVectors(standardFace(80, -16, 0, 1, 1), planeWithNormal(0, 0, 1), {64, 32, false, 128, 128});
+    EXPECT_DOUBLE_EQ(layered.vecs[0][3], 80.0 / 64);
+    EXPECT_DOUBLE_EQ(layered.vecs[1][3], 112.0 / 32);
     // A zero scale counts as 1.
     const TextureVecs unscaled = textureVectors(standardFace(0, 0, 0, 0, 0), planeWithNormal(0, 0, 1), {64, 64});
     EXPECT_DOUBLE_EQ(unscaled.s({64, 0, 0}), 1.0);

@@ -253,6 +253,24 @@ TEST(ShaderParser, LightmapAndVertexDirectives) {
     EXPECT_EQ(parseOne("x { q3map_styleMarker\n }").styleMarker, 1);
 }
 
+// q3map2: q3map_terrain makes indexed, unclipped, T-junction-free, non-planar forced meta surfaces
+// smoothed over 179 degrees; q3map_indexed alone only marks the shader for index maps.
+TEST(ShaderParser, TerrainAndIndexedShaders) {
+    const ShaderInfo terrain = parseOne("t { q3map_terrain\n }");
+    EXPECT_TRUE(terrain.legacyTerrain);
+    EXPECT_TRUE(terrain.indexed);
+    EXPECT_TRUE(terrain.noClip);
+    EXPECT_TRUE(terrain.noTJunc);
+    EXPECT_TRUE(terrain.nonplanar);
+    EXPECT_TRUE(terrain.forceMeta);
+    EXPECT_FLOAT_EQ(terrain.shadeAngleDegrees, 179);
+    const ShaderInfo indexed = parseOne("i { q3map_indexed\n }");
+    EXPECT_TRUE(indexed.indexed);
+    EXPECT_FALSE(indexed.legacyTerrain);
+    EXPECT_FALSE(indexed.noClip);
+    EXPECT_FALSE(indexed.forceMeta);
+}
+
 TEST(ShaderParser, FirstStageImageIsTheDefaultLightImage) {
     ShaderInfo s = parseOne(R"(textures/a/wall
 {

@@ -232,3 +232,37 @@ textures/samples/tintvolume
 	surfaceparm nonsolid
 	surfaceparm trans
 }
+
+textures/samples/terrain
+{
+	q3map_terrain
+	q3map_textureSize 128 128
+	surfaceparm nodraw
+	surfaceparm nolightmap
+}
+
+textures/samples/terrain_0
+{
+	q3map_textureSize 64 64
+}
+
+textures/samples/terrain_1
+{
+	q3map_textureSize 64 64
+}
+
+textures/samples/terrain_2
+{
+	q3map_textureSize 64 64
+	q3map_tcGen ivector ( 256 0 0 ) ( 0 256 0 )
+}
+
+textures/samples/terrain_0to1
+{
+	q3map_textureSize 64 64
+}
+
+textures/samples/terrain_1to2
+{
+	q3map_textureSize 64 64
+}

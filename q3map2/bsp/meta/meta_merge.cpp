@@ -247,8 +247,13 @@ std::vector<int> processingOrder(const MetaTriangles& set, const ShaderTable* ta
     if (table) {
         std::map<const ShaderInfo*, int> loaded;
         for (const auto& s : table->shaders()) loaded.emplace(s.get(), int(loaded.size()));
-        for (const MetaTriangle& t : set.triangles)
-            if (auto it = loaded.find(t.shader); it != loaded.end()) shaderRank.emplace(t.shader, it->second);
+        for (const MetaTriangle& t : set.triangles) {
+            if (shaderRank.contains(t.shader)) continue;
+            auto it = loaded.find(t.shader);
+            // A layer shader of indexed terrain is a copy: it ranks as the script shader it copies.
+            if (it == loaded.end()) it = loaded.find(table->findExplicit(t.shader->name));
+            if (it != loaded.end()) shaderRank.emplace(t.shader, it->second);
+        }
     }
     const int firstUnloaded = table ? int(table->size()) : 0;
     for (const MetaTriangle& t : set.triangles)
