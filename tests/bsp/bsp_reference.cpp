@@ -78,12 +78,14 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     return final;
 }
 
-fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
+fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work,
+                                const std::vector<std::string>& extraOptions) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
     std::string options;
     for (const std::string& arg : sampleOptions(name)) options += " " + shellQuote(arg);
+    for (const std::string& arg : extraOptions) options += " " + shellQuote(arg);
     std::string output;
     const int status = runCommand(shellQuote(reference) + " -threads 1 -game quake3 -fs_basepath " + shellQuote(work) +
                                       " -fs_basegame samples -bsp" + options + " " +
@@ -93,11 +95,12 @@ fs::path referenceSampleCompile(const fs::path& reference, const std::string& na
     return work / "samples/maps";
 }
 
-SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name) {
+SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name,
+                                     const std::vector<std::string>& extraOptions) {
     SampleCompiles out;
     out.work = q3::test::tempDir() / (name + "-" + std::to_string(::getpid()));
-    out.ours = compileSample(name, out.work / "ours");
-    out.theirs = referenceSampleCompile(reference, name, out.work / "ref");
+    out.ours = compileSample(name, out.work / "ours", nullptr, extraOptions);
+    out.theirs = referenceSampleCompile(reference, name, out.work / "ref", extraOptions);
     return out;
 }
 

@@ -24,7 +24,8 @@ std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const s
 // The reference's -bsp of the sample `name` (bsp-samples, with the sample's options) in `work`/samples/maps/, uncached
 // (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
 std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
-                                             const std::filesystem::path& work);
+                                             const std::filesystem::path& work,
+                                             const std::vector<std::string>& extraOptions = {});
 
 // The sample `name` compiled by ours (compileSample) and by the reference (referenceSampleCompile),
 // each in its own folder under `work`, a scratch folder named after the sample and the process:
@@ -32,7 +33,9 @@ std::filesystem::path referenceSampleCompile(const std::filesystem::path& refere
 struct SampleCompiles {
     std::filesystem::path work, ours, theirs;
 };
-SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name);
+// `extraOptions` follow the sample's own options in both compiles.
+SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name,
+                                     const std::vector<std::string>& extraOptions = {});
 
 // Test expectations on a sample compiled both ways: every lump but the entities (which record the
 // command line) byte for byte, and the same .srf and .prt.

@@ -41,7 +41,8 @@ std::vector<std::string> sampleOptions(const std::string& name) {
     return args;
 }
 
-fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
+fs::path compileSample(const std::string& name, const fs::path& work, Log* log,
+                       const std::vector<std::string>& extraOptions) {
     fs::remove_all(work);
     fs::create_directories(work);
     fs::copy(samplesRoot() / "samples", work / "samples", fs::copy_options::recursive);
@@ -49,7 +50,8 @@ fs::path compileSample(const std::string& name, const fs::path& work, Log* log) 
     common.basePaths.push_back(work.string());
     common.baseGame = "samples";
     common.mapPath = work / "samples" / "maps" / (name + ".bsp");
-    const std::vector<std::string> args = sampleOptions(name);
+    std::vector<std::string> args = sampleOptions(name);
+    args.insert(args.end(), extraOptions.begin(), extraOptions.end());
     common.commandLine = "-bsp";
     for (const std::string& arg : args) common.commandLine += " " + arg;
     BspOptions options;

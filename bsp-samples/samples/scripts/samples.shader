@@ -232,3 +232,10 @@ textures/samples/tintvolume
 	surfaceparm nonsolid
 	surfaceparm trans
 }
+
+// model_forcemeta: model surfaces under this shader join the meta pipeline even without -meta
+textures/samples/forcemeta
+{
+	q3map_textureSize 64 64
+	q3map_forceMeta
+}
