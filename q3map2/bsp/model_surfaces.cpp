@@ -233,8 +233,8 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
         const std::optional<std::vector<model::SkinRemap>> skin = skinOf(e, *modelName, inputs.vfs, log);
         const ModelTransform transform = transformOf(e, parent.origin);
         const std::vector<Remap> remaps = remapsOf(e, log);
-        // Lightmap sample size and scale, shading angle and ambient light come from the misc_model's
-        // own keys (not its parent's), the shadow flags from its or else its parent's.
+        // Lightmap sample size and scale, shading angle, ambient light and cel shader come from the
+        // misc_model's own keys (not its parent's), the shadow flags from its or else its parent's.
         const EntitySurfaceParams keys = entitySurfaceParams(e, isWorld);
         const int cast = std::atoi(e.value("_castShadows", e.value("_cs", parent.source->value("_castShadows",
                                    parent.source->value("_cs", isWorld ? "1" : "0")))).c_str());
@@ -264,7 +264,7 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             ds.sampleSize = keys.sampleSize;
             ds.lightmapScale = keys.lightmapScale;
             ds.shadeAngle = keys.shadeAngle;
-            ds.ownAmbient = keys.ambientColor;
+            ds.modelEntity = e.number;
             const ClipMode mode = clipModeFor(spawnFlags, shader);
             if (mode != ClipMode::None && mode != ClipMode::Unknown) {
                 std::vector<DVec3> positions;

@@ -1,13 +1,15 @@
 // Forced meta misc_models against q3map2 2.5.17n on the model_forcemeta sample. Without -meta the
 // model surfaces under a q3map_forceMeta shader become meta surfaces while those forced by
-// spawnflag 4 stay triangle soups; with -meta both are merged. Either way every lump but the
-// entities, the .srf and the .prt are q3map2's byte for byte.
+// spawnflag 4 stay triangle soups; with -meta both are merged. The surfaces take the misc_model's
+// own lighting keys and cel shader. Either way every lump but the entities, the .srf and the .prt
+// are q3map2's byte for byte.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "bsp_reference.h"
 #include "bspfile.h"
+#include "file_io.h"
 #include "reference_fixture.h"
 
 namespace q3::bspstage {
@@ -35,6 +37,13 @@ TEST_P(ModelForceMetaReference, WithoutMetaEveryLumpButTheEntitiesEqualsQ3map2s)
     EXPECT_EQ(surfacesOf(ours, "models/samples/crate", bsp::MST_TRIANGLE_SOUP), 1);
     EXPECT_EQ(surfacesOf(ours, "textures/samples/floor", bsp::MST_TRIANGLE_SOUP), 1);
     EXPECT_GT(ours.brushes.size(), 6u) << "the ramp's clip brushes";
+    // The models' own keys: the cone's cel shader, the crate's sample size and ambient light.
+    int cel = 0;
+    for (const bsp::Surface& s : ours.surfaces) cel += ours.shaders[size_t(s.shaderNum)].name == std::string("textures/samples/cel");
+    EXPECT_EQ(cel, 1);
+    const std::string srf = readFileText(compiles.ours / "model_forcemeta.srf");
+    EXPECT_NE(srf.find("sampleSize 8"), std::string::npos);
+    EXPECT_NE(srf.find("ambientColor ( 5.000000 0.000000 0.000000 )"), std::string::npos);
     fs::remove_all(compiles.work);
 }
 
