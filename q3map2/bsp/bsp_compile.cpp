@@ -230,6 +230,15 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
         log.debug(countLine(patchCounts.patches, "patches"));
         log.debug(countLine(patchCounts.lodGroups, "patch LOD groups"));
         if (i == 0) {
+            // With -debugclip q3map2 adds the world's models before building its tree, so that the
+            // clip brushes' sides are clipped into it and drawn like brush faces.
+            const bool modelsFirst = options.clip.debugClip;
+            if (modelsFirst) {
+                std::vector<Brush> clip;
+                addModelSurfaces(e, true, map, modelInputs, surfaces, clip, log);
+                Tree noTreeYet;
+                prependClipBrushes(e, std::move(clip), surfaces, noTreeYet);
+            }
             out.world = buildWorldStructure(map, options.world, log);
             if (out.world.stoppedForLeakTest) {
                 out.stoppedForLeakTest = true;
@@ -247,9 +256,11 @@ CompiledBsp compileBsp(const CompileInputs& in, const BspCompileOptions& options
                 log.debug(countLine(culled.coincident, "coincident faces culled"));
                 addFaceSurfaces(e, faces, params, surfaces);
             }
-            std::vector<Brush> clip;
-            addModelSurfaces(e, true, map, modelInputs, surfaces, clip, log);
-            prependClipBrushes(e, std::move(clip), surfaces, out.world.tree);
+            if (!modelsFirst) {
+                std::vector<Brush> clip;
+                addModelSurfaces(e, true, map, modelInputs, surfaces, clip, log);
+                prependClipBrushes(e, std::move(clip), surfaces, out.world.tree);
+            }
             builder.emitBrushes(e.brushes);
             brushOutputs[i] = builder.brushOutput(0);
             filterDetailBrushesIntoTree(e.brushes, out.world.tree, map.planes);

@@ -79,6 +79,9 @@ struct DrawSurface {
     int receiveShadows = 1;
 
     float shadeAngle = 0;        // entity _shadeangle in degrees: meta triangles smooth their normals
+    // The misc_model .map entity a model surface came from (-1 for others): its _ambient/_color and
+    // _celshader apply in place of those of the entity the surface belongs to.
+    int modelEntity = -1;
     std::vector<SideRef> metaSides;  // meta surfaces: the sides their triangles came from
     uint32_t extraSurfaceFlags = 0;  // added to the shader's in the BSP (-patchmeta collision patches)
     const ShaderInfo* celShader = nullptr;  // copied as a cel surface (entity _celshader, -celshader)

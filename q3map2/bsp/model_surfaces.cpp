@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "face_surfaces.h"
 #include "log.h"
 #include "model.h"
 #include "model_clip.h"
@@ -221,20 +222,20 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
             continue;
         }
         const int spawnFlags = std::atoi(e.value("spawnflags").c_str());
-        if (spawnFlags & kForceMeta) {
-            log.warning(label(e) + ": spawnflags " + std::to_string(spawnFlags) +
-                        " (forced meta) are not supported by this build; model skipped");
-            continue;
-        }
         float clipDepth = inputs.clip.clipDepth;
         if (const std::string* d = e.find("_clipdepth")) clipDepth = float(std::atof(d->c_str()));
         bool refusedClip = false;
+        // Surfaces autoclip may use: their index in `out` and their vertices placed in doubles.
+        std::vector<std::pair<size_t, std::vector<DVec3>>> clipped;
         const int frame = std::atoi(e.value("_frame", e.value("frame")).c_str());
         const std::vector<model::Surface>* surfaces = cache.get(*modelName, frame, inputs, label(e), log);
         if (!surfaces) continue;
         const std::optional<std::vector<model::SkinRemap>> skin = skinOf(e, *modelName, inputs.vfs, log);
         const ModelTransform transform = transformOf(e, parent.origin);
         const std::vector<Remap> remaps = remapsOf(e, log);
+        // Lightmap sample size and scale, shading angle, ambient light and cel shader come from the
+        // misc_model's own keys (not its parent's), the shadow flags from its or else its parent's.
+        const EntitySurfaceParams keys = entitySurfaceParams(e, isWorld);
         const int cast = std::atoi(e.value("_castShadows", e.value("_cs", parent.source->value("_castShadows",
                                    parent.source->value("_cs", isWorld ? "1" : "0")))).c_str());
         const int receive = std::atoi(e.value("_receiveShadows", e.value("_rs", parent.source->value("_receiveShadows",
@@ -253,30 +254,45 @@ void addModelSurfaces(const BspEntity& parent, bool isWorld, LoadedMap& map, con
                 shaderName = shaderName.substr(0, shaderKey(shaderName).size()) +
                              ((spawnFlags & kRandomMapGenerator) ? "_RMG_BSP" : "_BSP");
             const ShaderInfo& shader = inputs.shaders.find(shaderName);
-            if (shader.forceMeta) {
-                log.warning(label(e) + ": shader " + shader.name +
-                            " forces meta surfaces, which this build does not make; model surface skipped");
-                continue;
-            }
             DrawSurface ds = triangleSurface(surface, shader, shaderName, transform, spawnFlags & kColorToAlpha, map);
+            // Forced meta triangles join the meta pipeline: always for a q3map_forceMeta shader,
+            // otherwise only with -meta (without it they stay a triangle soup).
+            if (shader.forceMeta || (spawnFlags & kForceMeta)) ds.kind = SurfaceKind::ForcedMeta;
             ds.mapEntityNum = parent.mapEntityNum;
             ds.castShadows = cast;
             ds.receiveShadows = receive;
-            if (wantsDefaultClip(spawnFlags, shader)) {
-                const ShaderInfo* debugShaders[2] = {nullptr, nullptr};
-                if (inputs.clip.debugClip)
-                    debugShaders[0] = &inputs.shaders.find("debugclip2"), debugShaders[1] = &inputs.shaders.find("debugclip");
-                ClipBrushes clip = clipBrushesForSurface(ds, shader, parent.mapEntityNum, clipDepth, inputs.clip,
-                                                         inputs.clip.debugClip ? &debugShaders : nullptr, *modelName, map.planes);
-                for (const std::string& w : clip.warnings) log.warning(w);
-                for (Brush& b : clip.brushes) clipBrushes.push_back(std::move(b));
-            } else if ((spawnFlags & kAutoclipFlags) && !refusedClip) {
-                log.warning(label(e) + ": autoclip spawnflags " + std::to_string(spawnFlags & kAutoclipFlags) +
-                            " other than 2 alone are not supported by this build; the model gets no clip brushes");
+            ds.sampleSize = keys.sampleSize;
+            ds.lightmapScale = keys.lightmapScale;
+            ds.shadeAngle = keys.shadeAngle;
+            ds.modelEntity = e.number;
+            const ClipMode mode = clipModeFor(spawnFlags, shader);
+            if (mode != ClipMode::None && mode != ClipMode::Unknown) {
+                std::vector<DVec3> positions;
+                for (const model::Vertex& v : surface.verts) positions.push_back(transform.pointInDoubles(v.xyz));
+                clipped.emplace_back(out.size(), std::move(positions));
+            }
+            if (mode == ClipMode::Unknown && !refusedClip) {
+                log.warning(label(e) + ": autoclip spawnflags " + std::to_string(spawnFlags & clipflag::All) +
+                            " name no clipping mode; the model gets no clip brushes");
                 refusedClip = true;
             }
             out.push_back(std::move(ds));
         }
+        if (clipped.empty()) continue;
+        ClipRequest request;
+        request.spawnFlags = spawnFlags;
+        request.mapEntityNum = parent.mapEntityNum;
+        request.clipDepth = clipDepth;
+        request.modelName = modelName;
+        if (inputs.clip.debugClip) {
+            request.debugShaders[0] = &inputs.shaders.find("debugclip2");
+            request.debugShaders[1] = &inputs.shaders.find("debugclip");
+        }
+        std::vector<ClipSurface> clipSurfaces;
+        for (auto& [index, positions] : clipped) clipSurfaces.push_back({&out[index], std::move(positions)});
+        ClipBrushes clip = clipBrushesForModel(clipSurfaces, request, inputs.clip, map.planes);
+        for (const std::string& w : clip.warnings) log.warning(w);
+        for (Brush& b : clip.brushes) clipBrushes.push_back(std::move(b));
     }
 }
 

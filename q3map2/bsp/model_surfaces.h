@@ -1,10 +1,10 @@
 // misc_model entities baked into a model's surfaces (q3map2 model.cpp AddTriangleModels,
 // InsertModel): every misc_model whose target names the entity (none for the world) has its model
 // loaded through the VFS, moved by its origin (less the parent's), angles and scale, its shaders
-// remapped by a _skin file and _remap keys, and each model surface becomes a triangle surface. Every
-// format of libs/model is read; spawnflag 2 (or a q3map_clipModel shader) makes clip brushes
-// (model_clip.h); the other autoclip modes and forced meta are refused with a warning naming the
-// entity, as is a missing or broken model file.
+// remapped by a _skin file and _remap keys, and each model surface becomes a triangle surface, or a
+// forced meta one (spawnflag 4 or a q3map_forceMeta shader) for the meta pipeline. Every format of
+// libs/model is read; the autoclip spawnflags (or a q3map_clipModel shader) make clip brushes
+// (model_clip.h). A missing or broken model file is skipped with a warning naming the entity.
 #pragma once
 
 #include <vector>

@@ -64,6 +64,12 @@ Vec3 ModelTransform::point(const Vec3& p) const {
             p.x * m_[2] + p.y * m_[6] + p.z * m_[10] + m_[14]};
 }
 
+DVec3 ModelTransform::pointInDoubles(const Vec3& p) const {
+    const double x = p.x, y = p.y, z = p.z;
+    return {m_[0] * x + m_[4] * y + m_[8] * z + m_[12], m_[1] * x + m_[5] * y + m_[9] * z + m_[13],
+            m_[2] * x + m_[6] * y + m_[10] * z + m_[14]};
+}
+
 Vec3 ModelTransform::normal(const Vec3& d) const {
     return {d.x * n_[0] + d.y * n_[4] + d.z * n_[8], d.x * n_[1] + d.y * n_[5] + d.z * n_[9],
             d.x * n_[2] + d.y * n_[6] + d.z * n_[10]};

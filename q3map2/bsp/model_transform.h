@@ -5,6 +5,7 @@
 // same bits as q3map2's.
 #pragma once
 
+#include "dvec3.h"
 #include "vec3.h"
 
 namespace q3::bspstage {
@@ -19,6 +20,8 @@ public:
     static ModelTransform skybox(const Vec3& origin, float pitch, float yaw, float roll, const Vec3& scale);
 
     Vec3 point(const Vec3& p) const;
+    // The same product in doubles (the float matrix times a double point), as autoclip takes it.
+    DVec3 pointInDoubles(const Vec3& p) const;
     Vec3 normal(const Vec3& n) const;  // by the inverse transpose, not normalised
     bool leftHanded() const;           // mirrors: triangle corners must be swapped
 

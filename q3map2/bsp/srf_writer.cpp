@@ -18,9 +18,9 @@ std::string surfaceExtraText(const std::vector<const DrawSurface*>& surfaces, in
     const int defaultCast = 1, defaultReceive = 1;
     const Vec3 defaultAmbient = entityParams.empty() ? Vec3{0, 0, 0} : entityParams[0].ambientColor;
     auto ambientOf = [&](const DrawSurface& ds) {
-        return ds.mapEntityNum >= 0 && size_t(ds.mapEntityNum) < entityParams.size()
-                   ? entityParams[size_t(ds.mapEntityNum)].ambientColor
-                   : Vec3{0, 0, 0};
+        const int entity = ds.modelEntity >= 0 ? ds.modelEntity : ds.mapEntityNum;
+        return entity >= 0 && size_t(entity) < entityParams.size() ? entityParams[size_t(entity)].ambientColor
+                                                                   : Vec3{0, 0, 0};
     };
     std::string out = "default\n{\n";
     out += "\tcastShadows " + std::to_string(defaultCast) + "\n";

@@ -1,5 +1,6 @@
 #include "bsp_compare.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -16,6 +17,30 @@ bool insideBrush(const bsp::Bsp& bsp, const bsp::Brush& brush, const Vec3& p) {
         if (dot(Vec3::fromArray(plane.normal), p) - plane.dist > 0) return false;
     }
     return true;
+}
+
+double planeDifference(const bsp::Plane& a, const bsp::Plane& b) {
+    double d = std::fabs(double(a.dist) - double(b.dist));
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::fabs(double(a.normal[k]) - double(b.normal[k])));
+    return d;
+}
+
+std::vector<const bsp::Plane*> sidePlanes(const bsp::Bsp& bsp, const bsp::Brush& brush) {
+    std::vector<const bsp::Plane*> out;
+    for (int s = 0; s < brush.numSides; ++s)
+        out.push_back(&bsp.planes[size_t(bsp.brushSides[size_t(brush.firstSide + s)].planeNum)]);
+    return out;
+}
+
+// The largest distance from a plane of `from` to its nearest plane in `to`.
+double farthestNearest(const std::vector<const bsp::Plane*>& from, const std::vector<const bsp::Plane*>& to) {
+    double worst = 0;
+    for (const bsp::Plane* p : from) {
+        double nearest = 1e30;
+        for (const bsp::Plane* q : to) nearest = std::min(nearest, planeDifference(*p, *q));
+        worst = std::max(worst, nearest);
+    }
+    return worst;
 }
 
 double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * double(length(cross(b - a, c - a))); }
@@ -36,6 +61,21 @@ int pointContents(const bsp::Bsp& bsp, const Vec3& point) {
         if (insideBrush(bsp, brush, point)) contents |= bsp.shaders[size_t(brush.shaderNum)].contentFlags;
     }
     return contents;
+}
+
+BrushPlaneComparison compareBrushPlanes(const bsp::Bsp& ours, const bsp::Bsp& theirs) {
+    BrushPlaneComparison out;
+    out.brushes = int(std::min(ours.brushes.size(), theirs.brushes.size()));
+    for (size_t i = 0; i < size_t(out.brushes); ++i) {
+        const bsp::Brush& a = ours.brushes[i];
+        const bsp::Brush& b = theirs.brushes[i];
+        if (std::string(ours.shaders[size_t(a.shaderNum)].name) != theirs.shaders[size_t(b.shaderNum)].name)
+            ++out.otherShader;
+        if (a.numSides != b.numSides) ++out.otherSideCount;
+        const auto pa = sidePlanes(ours, a), pb = sidePlanes(theirs, b);
+        out.worstPlane = std::max({out.worstPlane, farthestNearest(pa, pb), farthestNearest(pb, pa)});
+    }
+    return out;
 }
 
 std::vector<Vec3> randomPoints(const bsp::Bsp& bsp, int count, unsigned seed) {

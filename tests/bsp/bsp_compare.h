@@ -30,4 +30,16 @@ struct AreaComparison {
 AreaComparison compareAreas(const std::map<std::string, double>& ours, const std::map<std::string, double>& theirs,
                             double tolerance);
 
+// Brush by brush (same order), how far the two compiles' side planes are apart: for every plane of
+// either brush the nearest plane of the other (largest difference of a normal component or the
+// distance), the worst of those over all brushes. Brushes whose content shader or side count
+// differ are counted.
+struct BrushPlaneComparison {
+    int brushes = 0;          // compared (the smaller count)
+    int otherShader = 0;      // content shader names differ
+    int otherSideCount = 0;   // side counts differ
+    double worstPlane = 0;    // over all brushes
+};
+BrushPlaneComparison compareBrushPlanes(const bsp::Bsp& ours, const bsp::Bsp& theirs);
+
 }  // namespace q3::bspstage::test

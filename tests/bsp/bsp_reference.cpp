@@ -78,8 +78,9 @@ fs::path referenceCompile(const fs::path& reference, const fs::path& mapSource, 
     return final;
 }
 
-fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work) {
-    return referenceSampleCompileWith(reference, name, sampleOptions(name), work);
+fs::path referenceSampleCompile(const fs::path& reference, const std::string& name, const fs::path& work,
+                                const std::vector<std::string>& extraOptions) {
+    return referenceSampleCompileWith(reference, name, sampleOptionsWith(name, extraOptions), work);
 }
 
 fs::path referenceSampleCompileWith(const fs::path& reference, const std::string& name,
@@ -98,8 +99,9 @@ fs::path referenceSampleCompileWith(const fs::path& reference, const std::string
     return work / "samples/maps";
 }
 
-SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name) {
-    return compileSampleBothWaysWith(reference, name, sampleOptions(name));
+SampleCompiles compileSampleBothWays(const fs::path& reference, const std::string& name,
+                                     const std::vector<std::string>& extraOptions) {
+    return compileSampleBothWaysWith(reference, name, sampleOptionsWith(name, extraOptions));
 }
 
 SampleCompiles compileSampleBothWaysWith(const fs::path& reference, const std::string& name,

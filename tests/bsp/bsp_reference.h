@@ -26,7 +26,8 @@ std::filesystem::path ourCompile(const std::filesystem::path& mapSource, const s
 // The reference's -bsp of the sample `name` (bsp-samples, with the sample's options) in `work`/samples/maps/, uncached
 // (a sample compiles in a fraction of a second); returns that folder. Fails the test when it fails.
 std::filesystem::path referenceSampleCompile(const std::filesystem::path& reference, const std::string& name,
-                                             const std::filesystem::path& work);
+                                             const std::filesystem::path& work,
+                                             const std::vector<std::string>& extraOptions = {});
 // The same with the options given instead of the sample's own.
 std::filesystem::path referenceSampleCompileWith(const std::filesystem::path& reference, const std::string& name,
                                                  const std::vector<std::string>& args,
@@ -38,7 +39,9 @@ std::filesystem::path referenceSampleCompileWith(const std::filesystem::path& re
 struct SampleCompiles {
     std::filesystem::path work, ours, theirs;
 };
-SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name);
+// `extraOptions` follow the sample's own options in both compiles.
+SampleCompiles compileSampleBothWays(const std::filesystem::path& reference, const std::string& name,
+                                     const std::vector<std::string>& extraOptions = {});
 // Both ways with the options given instead of the sample's own.
 SampleCompiles compileSampleBothWaysWith(const std::filesystem::path& reference, const std::string& name,
                                          const std::vector<std::string>& args);

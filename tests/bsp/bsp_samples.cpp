@@ -41,8 +41,15 @@ std::vector<std::string> sampleOptions(const std::string& name) {
     return args;
 }
 
-fs::path compileSample(const std::string& name, const fs::path& work, Log* log) {
-    return compileSampleWith(name, sampleOptions(name), work, log);
+std::vector<std::string> sampleOptionsWith(const std::string& name, const std::vector<std::string>& extraOptions) {
+    std::vector<std::string> args = sampleOptions(name);
+    args.insert(args.end(), extraOptions.begin(), extraOptions.end());
+    return args;
+}
+
+fs::path compileSample(const std::string& name, const fs::path& work, Log* log,
+                       const std::vector<std::string>& extraOptions) {
+    return compileSampleWith(name, sampleOptionsWith(name, extraOptions), work, log);
 }
 
 fs::path compileSampleWith(const std::string& name, const std::vector<std::string>& args, const fs::path& work,

@@ -23,11 +23,15 @@ std::vector<std::string> sampleOutputExtensions(const std::filesystem::path& dir
 // The -bsp options a sample is compiled with: its first line "// options: -meta ..." (none without).
 std::vector<std::string> sampleOptions(const std::string& name);
 
-// Copies the sample game folder under `work` and runs -bsp on the sample there (quiet); returns the
-// folder holding the outputs. Throws what the stage throws. Messages go to `log` when given.
-std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work, Log* log = nullptr);
+// Copies the sample game folder under `work` and runs -bsp on the sample there (quiet), with the
+// sample's options and then `extraOptions`; returns the folder holding the outputs. Throws what the
+// stage throws. Messages go to `log` when given.
+std::filesystem::path compileSample(const std::string& name, const std::filesystem::path& work, Log* log = nullptr,
+                                    const std::vector<std::string>& extraOptions = {});
 // The same with the options given instead of the sample's own.
 std::filesystem::path compileSampleWith(const std::string& name, const std::vector<std::string>& args,
                                         const std::filesystem::path& work, Log* log = nullptr);
+// The sample's own options followed by `extraOptions`.
+std::vector<std::string> sampleOptionsWith(const std::string& name, const std::vector<std::string>& extraOptions);
 
 }  // namespace q3::bspstage::test

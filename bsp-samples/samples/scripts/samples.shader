@@ -266,3 +266,10 @@ textures/samples/terrain_1to2
 {
 	q3map_textureSize 64 64
 }
+
+// model_forcemeta: model surfaces under this shader join the meta pipeline even without -meta
+textures/samples/forcemeta
+{
+	q3map_textureSize 64 64
+	q3map_forceMeta
+}

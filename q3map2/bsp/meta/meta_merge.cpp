@@ -67,6 +67,7 @@ public:
         ds.fogNum = seed.fogNum;
         ds.sampleSize = seed.sampleSize;
         ds.shadeAngle = seed.shadeAngle;
+        ds.modelEntity = seed.modelEntity;
         ds.lightmapAxis = seed.lightmapAxis;
         vertexLit_ = seed.shader->isVertexLit();
         maxVerts_ = vertexLit_ ? limits.maxSurfaceVerts : limits.maxLightmappedVerts;

@@ -122,6 +122,7 @@ void MetaTriangles::addSurface(const DrawSurface& ds, int surfaceNum, const Plan
     base.castShadows = ds.castShadows;
     base.receiveShadows = ds.receiveShadows;
     base.shadeAngle = ds.shadeAngle;
+    base.modelEntity = ds.modelEntity;
     base.lightmapAxis = ds.lightmapAxis;
     for (size_t i = 0; i + 2 < ds.indexes.size(); i += 3) {
         const int a = ds.indexes[i], b = ds.indexes[i + 1], c = ds.indexes[i + 2];

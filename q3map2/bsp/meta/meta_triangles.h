@@ -46,6 +46,7 @@ struct MetaTriangle {
     int castShadows = 1;
     int receiveShadows = 1;
     float shadeAngle = 0;  // the entity's, in degrees
+    int modelEntity = -1;  // the surface's, passed on to the meta surface it seeds
     Vec3 normal{0, 0, 0};  // plane, in single precision as q3map2 keeps it
     float dist = 0;
     Vec3 lightmapAxis{0, 0, 0};

@@ -36,8 +36,9 @@ int finishSurfaces(std::vector<DrawSurface>& surfaces, const FinishInputs& in) {
     const size_t before = surfaces.size();
     std::map<int, const ShaderInfo*> celByEntity;  // a model's surfaces mostly share one entity
     for (size_t i = 0; i < before; ++i) {
-        auto [it, added] = celByEntity.try_emplace(surfaces[i].mapEntityNum, nullptr);
-        if (added) it->second = celShaderOf(surfaces[i].mapEntityNum, in);
+        const int entity = surfaces[i].modelEntity >= 0 ? surfaces[i].modelEntity : surfaces[i].mapEntityNum;
+        auto [it, added] = celByEntity.try_emplace(entity, nullptr);
+        if (added) it->second = celShaderOf(entity, in);
         surfaces[i].celShader = it->second;
     }
     // Copies are appended while walking and finished in their turn (they keep the cel shader).
