@@ -1,6 +1,7 @@
 #include "bsp_brushes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string_view>
 
@@ -137,24 +138,77 @@ DVec3 parseVectorKey(const std::string& text) {
     return {v[0], v[1], v[2]};
 }
 
+namespace {
+
+// The point where three planes meet (Cramer's rule); false when two of them are parallel.
+bool solveThreePlanes(const DPlane& p0, const DPlane& p1, const DPlane& p2, DVec3& out) {
+    const DPlane* rows[3] = {&p0, &p1, &p2};
+    auto det3 = [&](auto&& at) {
+        return at(0, 0) * (at(1, 1) * at(2, 2) - at(2, 1) * at(1, 2)) -
+               at(0, 1) * (at(1, 0) * at(2, 2) - at(2, 0) * at(1, 2)) +
+               at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
+    };
+    const double det = det3([&](int r, int c) { return rows[r]->normal[c]; });
+    if (std::fabs(det) < 1e-12) return false;
+    for (int axis = 0; axis < 3; ++axis)
+        out[axis] = det3([&](int r, int c) { return c == axis ? rows[r]->dist : rows[r]->normal[c]; }) / det;
+    return true;
+}
+
+// The box of every corner of the brush: each point where three of its planes meet that lies
+// behind all of them (within 0.1), as q3map2 bounds a brush before building its windings.
+DBounds brushCornerBounds(const std::vector<DPlane>& planes) {
+    DBounds bounds;
+    for (size_t i = 0; i < planes.size(); ++i)
+        for (size_t j = i + 1; j < planes.size(); ++j)
+            for (size_t k = j + 1; k < planes.size(); ++k) {
+                DVec3 corner;
+                if (!solveThreePlanes(planes[i], planes[j], planes[k], corner)) continue;
+                if (std::all_of(planes.begin(), planes.end(),
+                                [&](const DPlane& p) { return p.distanceTo(corner) < kOnEpsilon; }))
+                    bounds.add(corner);
+            }
+    return bounds;
+}
+
+}  // namespace
+
 bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
     auto planeOf = [&](const BrushSide& s) {
         return s.exactPlane.normal != DVec3{} ? s.exactPlane : planes[s.planeNum].plane;
     };
+    std::vector<DPlane> bounding;
+    for (const BrushSide& side : brush.sides)
+        if (!side.bevel) bounding.push_back(planeOf(side));
+    DBounds corners = brushCornerBounds(bounding);
+    if (corners.empty()) {
+        for (BrushSide& side : brush.sides) side.winding.clear();
+        brush.bounds = DBounds{};
+        return false;
+    }
+    // Windings are built around the brush's centre, from base windings that just cover its box,
+    // and moved back: their first points and last bits are those of q3map2's.
+    const DVec3 offset = corners.center();
+    corners.mins -= offset;
+    corners.maxs -= offset;
+    auto centred = [&](const BrushSide& s) {
+        DPlane p = planeOf(s);
+        p.dist -= dot(p.normal, offset);
+        return p;
+    };
     for (size_t i = 0; i < brush.sides.size(); ++i) {
         BrushSide& side = brush.sides[i];
-        Winding w = baseWindingForPlaneAccurate(planeOf(side));
+        Winding w = baseWindingForPlaneInBounds(centred(side), corners);
         for (size_t j = 0; j < brush.sides.size() && !w.empty(); ++j) {
             const BrushSide& clipper = brush.sides[j];
             if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
-            chopWindingInPlaceAccurate(w, planeOf(clipper).flipped(), 0);
+            chopWindingInPlaceAccurate(w, centred(clipper).flipped(), 0);
         }
         weldShortEdges(w);
         side.winding.clear();
         if (w.size() >= 3)
-            // + 0.0 turns -0 into 0: q3map2 builds windings around the brush centre and moves
-            // them back, so an axial coordinate of 0 comes out positive.
-            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p + DVec3{0.0, 0.0, 0.0}));
+            // + 0.0 turns -0 into 0, as q3map2's move back does.
+            for (const DVec3& p : w) side.winding.push_back(roundToFloat(p + offset + DVec3{0.0, 0.0, 0.0}));
     }
     brush.bounds = DBounds{};
     for (const BrushSide& side : brush.sides)

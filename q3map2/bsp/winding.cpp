@@ -139,15 +139,22 @@ Winding baseWindingForPlane(const DPlane& plane) {
     return {DVec3(org - right + up), DVec3(org + right + up), DVec3(org + right - up), DVec3(org - right - up)};
 }
 
-Winding baseWindingForPlaneAccurate(const DPlane& plane) {
-    // Some component of a unit normal exceeds 1/sqrt(3).
+Winding baseWindingForPlaneInBounds(const DPlane& plane, const DBounds& bounds) {
     const int axis = dominantAxis(plane.normal, 0.56f);
-    if (axis < 0) return {};
-    DVec3 right = axis == 2 ? DVec3{0, -plane.normal.z, plane.normal.y} : DVec3{-plane.normal.y, plane.normal.x, 0};
-    right *= kMaxWorldCoord * 4;
-    const DVec3 up = cross(plane.normal, right);
-    const DVec3 org = plane.normal * plane.dist;
-    return {org - right + up, org + right + up, org + right - up, org - right - up};
+    if (axis < 0 || bounds.empty()) return {};
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    const DVec3 centre = (bounds.mins + bounds.maxs) * 0.5, half = (bounds.maxs - bounds.mins) * 0.5;
+    const double alongA = plane.normal[axis] > 0 ? half[a] : -half[a];
+    // Corners of the bounds' footprint across the dominant axis, lifted onto the plane along it.
+    Winding w;
+    for (const auto [sr, su] : {std::pair{-1, 1}, std::pair{1, 1}, std::pair{1, -1}, std::pair{-1, -1}}) {
+        DVec3 p;
+        p[b] = centre[b] - sr * half[b];
+        p[a] = centre[a] + su * alongA;
+        p[axis] = (plane.dist - plane.normal[a] * p[a] - plane.normal[b] * p[b]) / plane.normal[axis];
+        w.push_back(p);
+    }
+    return w;
 }
 
 void chopWindingInPlace(Winding& w, const DPlane& plane, double epsilon) { chop(w, plane, epsilon, Precision::Float); }

@@ -23,10 +23,11 @@ enum class PlaneSide { Front = 0, Back = 1, On = 2, Cross = 3 };
 
 // A quad on the plane far larger than the world (q3map2 BaseWindingForPlane).
 Winding baseWindingForPlane(const DPlane& plane);
-// The same for brush windings, larger and built without normalising (BaseWindingForPlaneAccu), so
-// the corners stay exact for axial planes.
-Winding baseWindingForPlaneAccurate(const DPlane& plane);
 
+// For brush windings: the corners of the bounds' footprint across the plane's dominant axis, lifted
+// onto the plane along it, in q3map2's order (BaseWindingForPlaneAccu with the brush's box). Exact
+// for axial planes; empty when no component of the normal dominates or the bounds are empty.
+Winding baseWindingForPlaneInBounds(const DPlane& plane, const DBounds& bounds);
 // Keeps the part in front of the plane. Points within `epsilon` count as on it; the winding
 // empties when nothing is in front. Like every operation here except the "Accurate" ones, it
 // works as q3map2's float windings do (distances in 32-bit floats, new points rounded to floats).

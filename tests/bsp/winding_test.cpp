@@ -13,17 +13,42 @@ Winding square(double size, double z = 0) {
 TEST(Winding, BaseWindingLiesOnItsPlaneAndFacesIt) {
     const DPlane plane{normalize(DVec3{1, 2, 3}), 50};
     // The float base winding is q3map2's: its corners, 2^17 units out, are off the plane by up to
-    // about 0.01 (float spacing there is 0.0156); the accurate one stays on it.
+    // about 0.01 (float spacing there is 0.0156); the one fitted to bounds stays on it.
+    const DBounds bounds{{-40, -60, -80}, {40, 60, 80}};
     const std::pair<Winding, double> windings[] = {{baseWindingForPlane(plane), 0.02},
-                                                   {baseWindingForPlaneAccurate(plane), 1e-6}};
+                                                   {baseWindingForPlaneInBounds(plane, bounds), 1e-9}};
     for (const auto& [w, tolerance] : windings) {
         ASSERT_EQ(w.size(), 4u);
         for (const DVec3& p : w) EXPECT_NEAR(plane.distanceTo(p), 0, tolerance);
         EXPECT_GT(dot(windingPlane(w).normal, plane.normal), 0.999);
-        EXPECT_GT(windingArea(w), 1e10);
     }
+    EXPECT_GT(windingArea(windings[0].first), 1e10);
     // Axial planes stay exact in both.
     for (const DVec3& p : baseWindingForPlane({DVec3{0, 0, 1}, 100})) EXPECT_EQ(p.z, 100);
+}
+
+// The winding fitted to a brush's box is that box's face, starting at the corner q3map2's starts
+// at: the first point decides where every face of a box brush begins.
+TEST(Winding, BaseWindingInBoundsStartsAtQ3map2sCorner) {
+    const DBounds box{{100, 150, 50}, {180, 260, 90}};
+    struct Case {
+        DVec3 normal;
+        double dist;
+        DVec3 first, second;
+    };
+    const Case cases[] = {
+        {{-1, 0, 0}, -100, {100, 150, 90}, {100, 150, 50}}, {{1, 0, 0}, 180, {180, 260, 90}, {180, 260, 50}},
+        {{0, -1, 0}, -150, {180, 150, 50}, {100, 150, 50}}, {{0, 1, 0}, 260, {180, 260, 90}, {100, 260, 90}},
+        {{0, 0, -1}, -50, {100, 260, 50}, {100, 150, 50}},  {{0, 0, 1}, 90, {180, 260, 90}, {180, 150, 90}},
+    };
+    for (const Case& c : cases) {
+        const Winding w = baseWindingForPlaneInBounds({c.normal, c.dist}, box);
+        ASSERT_EQ(w.size(), 4u);
+        EXPECT_EQ(w[0], c.first) << c.normal.x << " " << c.normal.y << " " << c.normal.z;
+        EXPECT_EQ(w[1], c.second) << c.normal.x << " " << c.normal.y << " " << c.normal.z;
+        EXPECT_GT(dot(windingPlane(w).normal, c.normal), 0.999);  // clockwise seen from the front
+    }
+    EXPECT_TRUE(baseWindingForPlaneInBounds({DVec3{0, 0, 1}, 0}, DBounds{}).empty());
 }
 
 TEST(Winding, ChopKeepsTheFront) {
