@@ -1,7 +1,8 @@
 // -light -worldlights on the box room of bsp-samples with a point light, a linear light, a
 // controlled-model light, a spotlight and a sun: the lump's records, their clusters against the
 // BSP's own leaf lookup, their evaluation against the compiler's unoccluded grid contribution,
-// output independent of the thread count, and a relight that replaces or removes the lump.
+// the SH grid against the projection of the records, output independent of the thread count, and
+// a relight that replaces or removes the lump.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,8 @@
 #include "light_context.h"
 #include "light_contribution.h"
 #include "light_stage.h"
+#include "sh.h"
+#include "sh_grid_lump.h"
 #include "test_data.h"
 #include "world_lights_export.h"
 
@@ -55,6 +58,7 @@ LightOptions worldLightOptions() {
     options.noLightmaps = true;
     options.sh = true;
     options.worldLights = true;
+    options.shExact = true;  // every probe lights every light itself (no interpolation between corners)
     return options;
 }
 
@@ -184,6 +188,59 @@ TEST_F(WorldLightsCompile, RecordsEvaluateToTheCompilersUnoccludedContribution) 
     }
     EXPECT_GT(compared, 5 * 48 * 8 * 9 / 10);  // few normals lie on a terminator
     EXPECT_GT(lit, compared / 5);  // most comparisons are of light that arrives, not of zeros
+}
+
+// The records' unit claim, end to end: at an open grid point the SH grid's nine coefficients are
+// the projection of the summed record evaluations over all normals (the grid projects each
+// light's incidence exactly, so only the quadrature of the kinks at the terminators differs).
+// Suns are left out: the sealed room has no sky, so the grid receives none of their light.
+TEST_F(WorldLightsCompile, RecordsSumToTheShGridAtOpenPoints) {
+    const bsp::Bsp lit = bsp::readBsp(bspPath_);
+    sh::GridSH grid;
+    std::string error;
+    ASSERT_TRUE(sh::decodeGridLump(lit.shGrid.data(), lit.shGrid.size(), grid, error)) << error;
+    constexpr int kNormals = 8192;
+    std::vector<std::array<float, 3>> normals;
+    std::vector<sh::Basis> basis;
+    const double golden = M_PI * (3 - std::sqrt(5.0));
+    for (int k = 0; k < kNormals; ++k) {
+        const double z = 1 - (2 * k + 1) / double(kNormals);
+        const double r = std::sqrt(1 - z * z);
+        const sh::Vec3d n{r * std::cos(golden * k), r * std::sin(golden * k), z};
+        normals.push_back({float(n.x), float(n.y), float(n.z)});
+        basis.push_back(sh::evalBasis(n));
+    }
+    const double weight = 4 * M_PI / kNormals;
+    int checked = 0;
+    for (int z = 0; z < grid.bounds[2]; ++z)
+        for (int y = 0; y < grid.bounds[1]; ++y)
+            for (int x = 0; x < grid.bounds[0]; ++x) {
+                const std::array<float, 3> p{grid.mins[0] + x * grid.size[0], grid.mins[1] + y * grid.size[1],
+                                             grid.mins[2] + z * grid.size[2]};
+                // Away from the walls (no nudging, no fill) and on a coarse subset.
+                if (p[0] < 64 || p[0] > 448 || p[1] < 64 || p[1] > 448 || p[2] < 48 || p[2] > 208) continue;
+                if ((x + y + z) % 5 != 0) continue;
+                std::array<std::array<double, 3>, 9> projected{};
+                double scale[3] = {0, 0, 0};
+                for (const sh::WorldLight& r : records_) {
+                    if (r.type == sh::WorldLightType::Sun) continue;
+                    const auto arriving = sh::worldLightArriving(r, p);
+                    for (int c = 0; c < 3; ++c) scale[c] += std::fabs(arriving[size_t(c)]);
+                    for (int k = 0; k < kNormals; ++k) {
+                        const auto e = sh::evaluateWorldLight(r, p, normals[size_t(k)]);
+                        for (int i = 0; i < 9; ++i)
+                            for (int c = 0; c < 3; ++c)
+                                projected[size_t(i)][size_t(c)] += e[size_t(c)] * basis[size_t(k)][size_t(i)] * weight;
+                    }
+                }
+                const auto& stored = grid.points[size_t(x + y * grid.bounds[0] + z * grid.bounds[0] * grid.bounds[1])];
+                for (int i = 0; i < 9; ++i)
+                    for (int c = 0; c < 3; ++c)
+                        EXPECT_NEAR(stored.coeffs[i][c], projected[size_t(i)][size_t(c)], 0.002 * scale[c] + 1e-6)
+                            << "point " << p[0] << " " << p[1] << " " << p[2] << " coefficient " << i << " channel " << c;
+                ++checked;
+            }
+    EXPECT_GE(checked, 20);
 }
 
 TEST_F(WorldLightsCompile, ThreadCountAndRelight) {
