@@ -3,6 +3,7 @@
 #include "bspfile_internal.h"
 
 #include "sh_grid_lump.h"
+#include "world_lights.h"
 
 #include <cmath>
 
@@ -183,6 +184,14 @@ void checkShGrid(const std::vector<uint8_t>& lump, const std::string& file, std:
     detail::fail(file, where, problem);
 }
 
+void checkWorldLights(const std::vector<uint8_t>& lump, const std::string& file) {
+    std::string problem = sh::checkWorldLightsLump(lump.data(), lump.size());
+    if (problem.empty()) return;
+    const std::string prefix = std::string(sh::kWorldLightsLumpName) + ": ";
+    if (problem.starts_with(prefix)) problem.erase(0, prefix.size());
+    detail::fail(file, std::string("bspx ") + sh::kWorldLightsLumpName, problem);
+}
+
 }  // namespace
 
 void validateBsp(const Bsp& bsp, const std::string& name) {
@@ -203,6 +212,7 @@ void validateBsp(const Bsp& bsp, const std::string& name) {
     if (!bsp.shGrid.empty()) checkShGrid(bsp.shGrid, name, lumpName(LUMP_LIGHTGRID_SH));
     if (const BspxLump* sh = bsp.findBspx(sh::kBspxLumpName))
         checkShGrid(sh->data, name, std::string("bspx ") + sh::kBspxLumpName);
+    if (const BspxLump* lights = bsp.findBspx(sh::kWorldLightsLumpName)) checkWorldLights(lights->data, name);
 }
 
 }  // namespace q3::bsp

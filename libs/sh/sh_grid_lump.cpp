@@ -2,6 +2,8 @@
 // little-endian whatever the host byte order.
 #include "sh_grid_lump.h"
 
+#include "le_bytes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,32 +11,11 @@
 namespace q3::sh {
 namespace {
 
-uint32_t readU32(const uint8_t* p) {
-    return uint32_t(p[0]) | (uint32_t(p[1]) << 8) | (uint32_t(p[2]) << 16) | (uint32_t(p[3]) << 24);
-}
-int32_t readI32(const uint8_t* p) {
-    const uint32_t u = readU32(p);
-    int32_t v;
-    std::memcpy(&v, &u, sizeof v);
-    return v;
-}
-float readF32(const uint8_t* p) {
-    const uint32_t u = readU32(p);
-    float v;
-    std::memcpy(&v, &u, sizeof v);
-    return v;
-}
-void writeU32(uint8_t* p, uint32_t u) {
-    p[0] = uint8_t(u);
-    p[1] = uint8_t(u >> 8);
-    p[2] = uint8_t(u >> 16);
-    p[3] = uint8_t(u >> 24);
-}
-void writeF32(uint8_t* p, float v) {
-    uint32_t u;
-    std::memcpy(&u, &v, sizeof u);
-    writeU32(p, u);
-}
+using le::readF32;
+using le::readI32;
+using le::readU32;
+using le::writeF32;
+using le::writeU32;
 
 const char* axisName(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : "z"; }
 

@@ -2,6 +2,7 @@
 // count then bytes, with '*' after the lumps whose in-memory form differs from the file's.
 #include "grid_stats.h"
 #include "info_stage.h"
+#include "world_lights.h"
 
 #include <cinttypes>
 #include <cstdio>
@@ -40,6 +41,23 @@ std::string shGridSection(const std::vector<uint8_t>& lump, const std::string& w
     out += printf9("  bytes        %zu\n", lump.size());
     out += printf9("  coefficient 0 min %g max %g mean %g\n", stats.coeff0Min, stats.coeff0Max, stats.coeff0Mean);
     out += printf9("  all-zero points %" PRId64 "\n", stats.allZeroPoints);
+    return out;
+}
+
+// Size and light count of a WORLDLIGHTS lump (a malformed one fails like a malformed SH grid).
+std::string worldLightsSection(const std::vector<uint8_t>& lump, const std::string& name) {
+    std::vector<sh::WorldLight> lights;
+    std::string error;
+    if (!sh::decodeWorldLights(lump.data(), lump.size(), lights, error)) throw bsp::BspError(name + ": BSPX " + error);
+    size_t counts[3] = {0, 0, 0}, inGrid = 0;
+    for (const sh::WorldLight& l : lights) {
+        ++counts[uint32_t(l.type)];
+        inGrid += (l.flags & sh::kWorldLightInShGrid) != 0;
+    }
+    std::string out = printf9("World lights (BSPX %s): %zu lights, %zu bytes\n", sh::kWorldLightsLumpName,
+                              lights.size(), lump.size());
+    out += printf9("  %zu point, %zu spot, %zu sun; %zu with their direct light in the SH grid\n", counts[0], counts[1],
+                   counts[2], inGrid);
     return out;
 }
 
@@ -119,6 +137,7 @@ std::string formatBspInfo(const bsp::Bsp& bsp, const std::string& name, uintmax_
         anySh = true;
     }
     if (!anySh) out += "SH grid: none\n";
+    if (const bsp::BspxLump* lump = bsp.findBspx(sh::kWorldLightsLumpName)) out += worldLightsSection(lump->data, name);
     out += legacyGridSection(bsp, entities);
     out += "---------------------------------\n";
     return out;

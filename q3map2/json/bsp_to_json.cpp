@@ -3,10 +3,12 @@
 #include "json_files.h"
 #include "json_stage.h"
 #include "json_writer.h"
+#include "world_lights_json.h"
 
 #include "file_io.h"
 #include "image.h"
 #include "sh_grid_lump.h"
+#include "world_lights.h"
 
 #include <cstring>
 
@@ -325,6 +327,8 @@ void bspxFile(Writer& w, const bsp::Bsp& bsp) {
         if (lump.name == sh::kBspxLumpName) {
             w.key("file");
             w.string(files::kGridPointsSH);
+        } else if (lump.name == sh::kWorldLightsLumpName) {
+            writeWorldLightsMember(w, lump.data, "BSPX " + lump.name);
         } else {
             w.key("bytes");
             w.integers(lump.data.data(), static_cast<int>(lump.data.size()));

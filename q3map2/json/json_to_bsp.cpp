@@ -6,10 +6,12 @@
 #include "json_stage.h"
 #include "json_value.h"
 #include "num_file.h"
+#include "world_lights_json.h"
 
 #include "file_io.h"
 #include "image.h"
 #include "sh_grid_lump.h"
+#include "world_lights.h"
 
 #include <cstring>
 #include <limits>
@@ -421,6 +423,10 @@ void readExtras(bsp::Bsp& bsp, const FolderReader& folder, const std::string& sh
                 if (!shInBspx) r.fail(c, std::string("lists ") + files::kGridPointsSH + " but the SH grid is not carried in BSPX");
                 bsp.setBspx(name, shBytes);
                 shInBspx = false;
+                continue;
+            }
+            if (name == sh::kWorldLightsLumpName) {
+                bsp.setBspx(name, readWorldLightsMember(r.member("lights", c), c + ".lights"));
                 continue;
             }
             const Value& bytes = r.member("bytes", c);

@@ -17,6 +17,7 @@
 #include "shader_info.h"
 #include "shader_loader.h"
 #include "vfs.h"
+#include "world_lights_export.h"
 
 namespace q3::light {
 namespace {
@@ -130,6 +131,7 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     } else if (!options.noGrid) {
         removeGridSH(ctx.bsp);
     }
+    attachWorldLights(ctx, log);  // after the SH grid, whose presence each record states
     phase("write");
     writeLitBsp(ctx, log);
     timer.end();

@@ -285,6 +285,11 @@ cli::OptionTable<O> buildLightTable() {
     flag({"-trisoup"}, &O::triSoup, "Convert brush faces to triangle soup", kNotImplemented);
     real({"-vertexscale"}, &O::vertexScale, Range::atLeast(0), "Scale of the resulting vertex light", kNotImplemented);
     flag({"-wolf"}, &O::wolfLight, "Linear falloff by default (Wolfenstein: ET)", kNotImplemented);
+    flag({"-worldlights"}, &O::worldLights,
+         "Write the BSPX lump WORLDLIGHTS: the point, spot and sun lights (origin, intensity in SH grid units, "
+         "falloff, cone, cluster, whether the SH grid holds their direct light) for engines that light models "
+         "with the strongest of them directly (docs/world-lights-format.md)",
+         kImplemented);
     return t;
 }
 

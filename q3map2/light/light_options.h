@@ -140,6 +140,9 @@ struct LightOptions {
     int shGatherSamples = 64;       // -shgathersamples: rays per probe (docs/sh-for-mappers.md)
     int shGatherStep = 2;           // -shgatherstep: probes that gather, every Nth per axis
     bool shExact = false;           // -shexact: every probe lights every light itself (no block sharing)
+
+    // -worldlights: the BSPX lump WORLDLIGHTS (docs/world-lights-format.md).
+    bool worldLights = false;
 };
 
 const cli::OptionTable<LightOptions>& lightOptionTable();

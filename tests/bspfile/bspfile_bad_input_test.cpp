@@ -3,6 +3,7 @@
 #include "synthetic_bsp.h"
 
 #include "sh_grid_lump.h"
+#include "../sh/world_lights_samples.h"
 
 #include <gtest/gtest.h>
 
@@ -379,6 +380,17 @@ TEST(BspBadInput, BspxShGridIsChecked) {
     grid.pop_back();
     bsp.setBspx(sh::kBspxLumpName, grid);
     expectError(serializeBsp(bsp), "bspx LIGHTGRID_SH: length");
+}
+
+TEST(BspBadInput, BspxWorldLightsAreChecked) {
+    Bsp bsp = makeSyntheticBsp();
+    std::vector<uint8_t> lights = sh::encodeWorldLights(sh::test::sampleWorldLights());
+    bsp.setBspx(sh::kWorldLightsLumpName, lights);
+    EXPECT_EQ(parseBsp(serializeBsp(bsp), kName).findBspx(sh::kWorldLightsLumpName)->data, lights);
+    std::vector<sh::WorldLight> records = sh::test::sampleWorldLights();
+    records[4].cluster = 2;  // the sun
+    bsp.setBspx(sh::kWorldLightsLumpName, sh::encodeWorldLights(records));
+    expectError(serializeBsp(bsp), ": bspx WORLDLIGHTS: light 4: a sun in cluster 2 (suns have -1)");
 }
 
 // Lump 18 --------------------------------------------------------------------------------------------

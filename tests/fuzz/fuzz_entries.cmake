@@ -20,7 +20,8 @@ if(NOT TARGET q3fuzz_entries)
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_bsp.cpp
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_text.cpp
     ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_files.cpp
-    ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_prt.cpp)
+    ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_prt.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/fuzz_entries_world_lights.cpp)
   target_include_directories(q3fuzz_entries PUBLIC ${CMAKE_CURRENT_LIST_DIR})
   target_link_libraries(q3fuzz_entries PUBLIC q3fuzz_synthetic q3bspfile q3sh q3mapfile q3shaders q3json q3vfs q3vis
                         q3io q3log q3script PRIVATE q3fuzz_map_bsp)

@@ -16,6 +16,7 @@ constexpr std::array kEntries = {
     FuzzEntry{"json_pack", fuzzJsonPack, "-json -pack: packFolder on an unpacked folder with one file replaced"},
     FuzzEntry{"pk3", fuzzPk3, "pk3 archives: Pk3Archive table of contents and entries, Vfs look-ups and listings"},
     FuzzEntry{"prt", fuzzPrt, ".prt reader: parsePortalFile; on small files the merges, base vis, passages and every flow mode"},
+    FuzzEntry{"world_lights", fuzzWorldLights, "WORLDLIGHTS lump: decodeWorldLights, re-encode, evaluateWorldLight of every record"},
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "log.h"
 #include "sh_grid_lump.h"
 #include "synthetic_bsp.h"
+#include "../sh/world_lights_samples.h"
 
 #include <zip.h>
 
@@ -297,6 +298,11 @@ void prtSeeds(const fs::path& out) {
     writeSeed(out / "prt", "no-portals.prt", "PRT1\n1\n0\n0\n");
 }
 
+void worldLightSeeds(const fs::path& out) {
+    writeSeed(out / "world_lights", "every-model.lump", q3::sh::encodeWorldLights(q3::sh::test::sampleWorldLights()));
+    writeSeed(out / "world_lights", "empty.lump", q3::sh::encodeWorldLights({}));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -315,6 +321,7 @@ int main(int argc, char** argv) {
         jsonSeeds(out, scratch);
         pk3Seeds(cache, out, scratch);
         prtSeeds(out);
+        worldLightSeeds(out);
         fs::remove_all(scratch);
         for (const q3::fuzz::FuzzEntry& entry : q3::fuzz::fuzzEntries()) {
             size_t count = 0;

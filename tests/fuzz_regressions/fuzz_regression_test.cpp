@@ -5,6 +5,7 @@
 #include "bspfile.h"
 #include "file_io.h"
 #include "test_data.h"
+#include "../sh/world_lights_samples.h"
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,17 @@ TEST(FuzzEntries, BspEntryRoundTripsOurOwnOutput) {
     const std::vector<uint8_t> image = q3::bsp::serializeBsp(q3::fuzz::jsonPackSourceBsp());
     run("bsp", image, context);
     run("sh_runtime", image, context);
+}
+
+// The world lights entry accepts the codec tests' lump and rejects a broken copy cleanly.
+TEST(FuzzEntries, WorldLightsEntryTakesValidAndBrokenLumps) {
+    const FuzzContext context{q3::test::tempDir()};
+    std::vector<uint8_t> lump = q3::sh::encodeWorldLights(q3::sh::test::sampleWorldLights());
+    run("world_lights", lump, context);
+    lump[16] = 9;  // first record's type
+    run("world_lights", lump, context);
+    lump.resize(40);
+    run("world_lights", lump, context);
 }
 
 TEST(FuzzEntries, JsonPackReplacesOneFileAndRestoresIt) {

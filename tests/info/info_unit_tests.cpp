@@ -2,6 +2,7 @@
 // small BSP built in memory.
 #include "grid_stats.h"
 #include "info_stage.h"
+#include "../sh/world_lights_samples.h"
 
 #include <gtest/gtest.h>
 
@@ -104,6 +105,30 @@ TEST(InfoReport, SmallBspInMemory) {
             }
         },
         bsp::BspError);
+}
+
+TEST(InfoReport, WorldLightsSizeAndCount) {
+    bsp::Bsp b;
+    b.entities = "{\n\"classname\" \"worldspawn\"\n}\n";
+    b.entities.push_back('\0');
+    b.setBspx(sh::kWorldLightsLumpName, sh::encodeWorldLights(sh::test::sampleWorldLights()));
+    const std::string report = info::formatBspInfo(b, "maps/lights.bsp", 1);
+    EXPECT_NE(report.find("  WORLDLIGHTS                    496\n"), std::string::npos) << report;
+    EXPECT_NE(report.find("World lights (BSPX WORLDLIGHTS): 5 lights, 496 bytes\n"), std::string::npos) << report;
+    EXPECT_NE(report.find("  2 point, 2 spot, 1 sun; 2 with their direct light in the SH grid\n"), std::string::npos)
+        << report;
+
+    std::vector<uint8_t> lump = sh::encodeWorldLights(sh::test::sampleWorldLights());
+    lump.resize(100);
+    b.setBspx(sh::kWorldLightsLumpName, lump);
+    try {
+        info::formatBspInfo(b, "maps/lights.bsp", 1);
+        ADD_FAILURE() << "a malformed WORLDLIGHTS lump was reported";
+    } catch (const bsp::BspError& e) {
+        EXPECT_NE(std::string(e.what()).find("maps/lights.bsp: BSPX WORLDLIGHTS: 5 lights need 496 bytes, the lump has 100"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "bsp_tree.h"
 #include "sky_visibility.h"
 #include "trace_scene.h"
+#include "world_lights.h"
 
 namespace q3::light {
 namespace {
@@ -171,31 +172,12 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
 }
 
 float controlledFalloff(const ControlledParams& p, float d) {
-    if (d <= p.falloffStart) return 1;
-    if (d >= p.falloffEnd) return 0;
-    const float lin = 1 - (d - p.falloffStart) / (p.falloffEnd - p.falloffStart);
-    const float s = std::max(p.falloffStart, kMinDistance);
-    const float e = p.falloffEnd;
-    const float see = (s * s) / (e * e);
-    float isq = see < 1 ? ((s * s) / (d * d) - see) / (1 - see) : lin;
-    isq = std::clamp(isq, 0.f, 1.f);
-    const float c = p.falloffCurvature;
-    return (1 - c) * lin + c * isq;
+    return sh::controlledFalloffFactor(d, p.falloffStart, p.falloffEnd, p.falloffCurvature);
 }
 
 float controlledCone(const ControlledParams& p, Vec3 spotAxis, Vec3 towardsLight) {
-    const float cosAngle = std::clamp(dot(-towardsLight, spotAxis), -1.f, 1.f);
-    const float angle = std::acos(cosAngle) * (180.0f / kPi);
-    const float inner = p.angleHotspot * 0.5f;
-    const float outer = p.anglePenumbra * 0.5f;
-    float cone;
-    if (angle <= inner)
-        cone = 1;
-    else if (angle >= outer)
-        cone = 0;
-    else
-        cone = 1 - (angle - inner) / (outer - inner);
-    return p.sphericalAmbient + (1 - p.sphericalAmbient) * cone;
+    return sh::controlledConeFactor(dot(-towardsLight, spotAxis), p.angleHotspot * 0.5f, p.anglePenumbra * 0.5f,
+                                    p.sphericalAmbient);
 }
 
 float controlledIncidence(const ControlledParams& p, float cosine) {
