@@ -107,6 +107,13 @@ void attachWorldLights(LightContext& ctx, Log& log) {
         spots += r.type == sh::WorldLightType::Spot;
         suns += r.type == sh::WorldLightType::Sun;
     }
+    // Lights the format could hold but that got no record: they reach no point, or a value lies
+    // outside what a record may carry (said once, so that a missing light is never silent).
+    size_t eligible = 0;
+    for (const Light& light : ctx.lights) eligible += light.type != LightType::Area && light.affectsGrid;
+    if (eligible > records.size())
+        log.warning(strCat("WORLDLIGHTS: ", eligible - records.size(),
+                           " lights not listed: they reach no point or carry values a record cannot hold"));
     std::vector<uint8_t> lump = sh::encodeWorldLights(records);
     log.info(strCat("WORLDLIGHTS: ", records.size(), " lights (", points, " point, ", spots, " spot, ", suns,
                     " sun), ", lump.size(), " bytes; ", areas, " area lights not listed"));
