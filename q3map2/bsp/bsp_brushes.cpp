@@ -171,6 +171,30 @@ DBounds brushCornerBounds(const std::vector<DPlane>& planes) {
     return bounds;
 }
 
+// Past this many sides a brush is bounded by its chopped windings instead: the corner search
+// tries every triple of planes, which a hostile map could make take minutes per brush.
+constexpr size_t kMaxSidesForCornerSearch = 96;
+
+// The box of the brush's windings, each cut from a world-sized base winding by the other sides.
+template <class PlaneOf>
+DBounds choppedWindingBounds(const Brush& brush, const PlaneOf& planeOf) {
+    const DBounds world{DVec3{-kMaxWorldCoord, -kMaxWorldCoord, -kMaxWorldCoord},
+                        DVec3{kMaxWorldCoord, kMaxWorldCoord, kMaxWorldCoord}};
+    DBounds bounds;
+    for (size_t i = 0; i < brush.sides.size(); ++i) {
+        const BrushSide& side = brush.sides[i];
+        if (side.bevel) continue;
+        Winding w = baseWindingForPlaneInBounds(planeOf(side), world);
+        for (size_t j = 0; j < brush.sides.size() && !w.empty(); ++j) {
+            const BrushSide& clipper = brush.sides[j];
+            if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
+            chopWindingInPlaceAccurate(w, planeOf(clipper).flipped(), 0);
+        }
+        for (const DVec3& p : w) bounds.add(p);
+    }
+    return bounds;
+}
+
 }  // namespace
 
 bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
@@ -180,7 +204,8 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
     std::vector<DPlane> bounding;
     for (const BrushSide& side : brush.sides)
         if (!side.bevel) bounding.push_back(planeOf(side));
-    DBounds corners = brushCornerBounds(bounding);
+    DBounds corners = bounding.size() <= kMaxSidesForCornerSearch ? brushCornerBounds(bounding)
+                                                                  : choppedWindingBounds(brush, planeOf);
     if (corners.empty()) {
         for (BrushSide& side : brush.sides) side.winding.clear();
         brush.bounds = DBounds{};

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "bsp_test_maps.h"
 #include "fake_map.h"
 
@@ -45,6 +48,44 @@ TEST(BspBrushes, BoxHasSixAxialSidesInCanonicalOrderWithQuadWindings) {
     EXPECT_FALSE(b.detail);
     EXPECT_EQ(b.contentFlags, contents::Solid);
     EXPECT_EQ(m.counts.boxBevels, 0);
+}
+
+// A brush of many sides is bounded by its chopped windings instead of the corner search over
+// every triple of planes (cubic): its windings are the same polygons either way.
+std::string prismBrush(int sides, double radius, double height) {
+    std::string text = "{\n";
+    char line[256];
+    for (int i = 0; i < sides; ++i) {
+        const double a = 2 * kPiD * i / sides, b = 2 * kPiD * (i + 1) / sides;
+        std::snprintf(line, sizeof line, "( %.4f %.4f 0 ) ( %.4f %.4f %g ) ( %.4f %.4f 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n",
+                      radius * std::cos(a), radius * std::sin(a), radius * std::cos(a), radius * std::sin(a), height,
+                      radius * std::cos(b), radius * std::sin(b));
+        text += line;
+    }
+    std::snprintf(line, sizeof line, "( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base/wall 0 0 0 0.5 0.5 0 0 0\n"
+                                     "( 0 0 %g ) ( 0 1 %g ) ( 1 0 %g ) base/wall 0 0 0 0.5 0.5 0 0 0\n}\n",
+                  height, height, height);
+    return text + line;
+}
+
+TEST(BspBrushes, PrismsOfFewAndManySidesGetTheirPolygons) {
+    for (const int sides : {24, 200}) {
+        map::MapFile file;
+        LoadedMap m = load(worldspawn(prismBrush(sides, 256, 64)), file);
+        ASSERT_EQ(m.entities[0].brushes.size(), 1u) << sides;
+        const Brush& b = m.entities[0].brushes[0];
+        size_t walls = 0, caps = 0;
+        for (const BrushSide& side : b.sides) {
+            if (side.bevel) continue;
+            if (side.winding.size() == 4) ++walls;
+            if (side.winding.size() == size_t(sides)) ++caps;
+            for (const DVec3& p : side.winding) EXPECT_NEAR(m.planes[side.planeNum].plane.distanceTo(p), 0, 0.01);
+        }
+        EXPECT_EQ(walls, size_t(sides)) << sides;
+        EXPECT_EQ(caps, 2u) << sides;
+        EXPECT_NEAR(b.bounds.maxs.z - b.bounds.mins.z, 64, 1e-3) << sides;
+        EXPECT_NEAR(b.bounds.maxs.x, 256, 1e-3) << sides;
+    }
 }
 
 TEST(BspBrushes, WedgeGetsAxialAndEdgeBevels) {
