@@ -175,21 +175,26 @@ DBounds brushCornerBounds(const std::vector<DPlane>& planes) {
 // tries every triple of planes, which a hostile map could make take minutes per brush.
 constexpr size_t kMaxSidesForCornerSearch = 96;
 
+// Side `i`'s winding: `base` cut by every other side but its opposite and the bevels, with
+// `sidePlanes` holding each side's plane (in whatever frame `base` is in).
+Winding cutByOtherSides(const Brush& brush, size_t i, Winding base, const std::vector<DPlane>& sidePlanes) {
+    const BrushSide& side = brush.sides[i];
+    for (size_t j = 0; j < brush.sides.size() && !base.empty(); ++j) {
+        const BrushSide& clipper = brush.sides[j];
+        if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
+        chopWindingInPlaceAccurate(base, sidePlanes[j].flipped(), 0);
+    }
+    return base;
+}
+
 // The box of the brush's windings, each cut from a world-sized base winding by the other sides.
-template <class PlaneOf>
-DBounds choppedWindingBounds(const Brush& brush, const PlaneOf& planeOf) {
+DBounds choppedWindingBounds(const Brush& brush, const std::vector<DPlane>& sidePlanes) {
     const DBounds world{DVec3{-kMaxWorldCoord, -kMaxWorldCoord, -kMaxWorldCoord},
                         DVec3{kMaxWorldCoord, kMaxWorldCoord, kMaxWorldCoord}};
     DBounds bounds;
     for (size_t i = 0; i < brush.sides.size(); ++i) {
-        const BrushSide& side = brush.sides[i];
-        if (side.bevel) continue;
-        Winding w = baseWindingForPlaneInBounds(planeOf(side), world);
-        for (size_t j = 0; j < brush.sides.size() && !w.empty(); ++j) {
-            const BrushSide& clipper = brush.sides[j];
-            if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
-            chopWindingInPlaceAccurate(w, planeOf(clipper).flipped(), 0);
-        }
+        if (brush.sides[i].bevel) continue;
+        const Winding w = cutByOtherSides(brush, i, baseWindingForPlaneInBounds(sidePlanes[i], world), sidePlanes);
         for (const DVec3& p : w) bounds.add(p);
     }
     return bounds;
@@ -198,14 +203,13 @@ DBounds choppedWindingBounds(const Brush& brush, const PlaneOf& planeOf) {
 }  // namespace
 
 bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
-    auto planeOf = [&](const BrushSide& s) {
-        return s.exactPlane.normal != DVec3{} ? s.exactPlane : planes[s.planeNum].plane;
-    };
-    std::vector<DPlane> bounding;
-    for (const BrushSide& side : brush.sides)
-        if (!side.bevel) bounding.push_back(planeOf(side));
+    std::vector<DPlane> sidePlanes, bounding;
+    for (const BrushSide& side : brush.sides) {
+        sidePlanes.push_back(side.exactPlane.normal != DVec3{} ? side.exactPlane : planes[side.planeNum].plane);
+        if (!side.bevel) bounding.push_back(sidePlanes.back());
+    }
     DBounds corners = bounding.size() <= kMaxSidesForCornerSearch ? brushCornerBounds(bounding)
-                                                                  : choppedWindingBounds(brush, planeOf);
+                                                                  : choppedWindingBounds(brush, sidePlanes);
     if (corners.empty()) {
         for (BrushSide& side : brush.sides) side.winding.clear();
         brush.bounds = DBounds{};
@@ -216,20 +220,11 @@ bool createBrushWindings(Brush& brush, const PlaneSet& planes) {
     const DVec3 offset = corners.center();
     corners.mins -= offset;
     corners.maxs -= offset;
-    auto centred = [&](const BrushSide& s) {
-        DPlane p = planeOf(s);
-        p.dist -= dot(p.normal, offset);
-        return p;
-    };
+    for (DPlane& p : sidePlanes) p.dist -= dot(p.normal, offset);
     for (size_t i = 0; i < brush.sides.size(); ++i) {
-        BrushSide& side = brush.sides[i];
-        Winding w = baseWindingForPlaneInBounds(centred(side), corners);
-        for (size_t j = 0; j < brush.sides.size() && !w.empty(); ++j) {
-            const BrushSide& clipper = brush.sides[j];
-            if (i == j || clipper.planeNum == (side.planeNum ^ 1) || clipper.bevel) continue;
-            chopWindingInPlaceAccurate(w, centred(clipper).flipped(), 0);
-        }
+        Winding w = cutByOtherSides(brush, i, baseWindingForPlaneInBounds(sidePlanes[i], corners), sidePlanes);
         weldShortEdges(w);
+        BrushSide& side = brush.sides[i];
         side.winding.clear();
         if (w.size() >= 3)
             // + 0.0 turns -0 into 0, as q3map2's move back does.
