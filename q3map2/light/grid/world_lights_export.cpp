@@ -100,8 +100,12 @@ void attachWorldLights(LightContext& ctx, Log& log) {
     settings.sunOnly = ctx.options.sunOnly;
     settings.forceFast = ctx.options.fast || ctx.options.faster || ctx.options.fastGrid;
     const std::vector<sh::WorldLight> records = worldLightRecords(ctx.lights, settings);
-    size_t points = 0, spots = 0, suns = 0, areas = 0;
-    for (const Light& light : ctx.lights) areas += light.type == LightType::Area;
+    // Area lights are never listed; the other lights that affect the grid should all be.
+    size_t points = 0, spots = 0, suns = 0, areas = 0, eligible = 0;
+    for (const Light& light : ctx.lights) {
+        areas += light.type == LightType::Area;
+        eligible += light.type != LightType::Area && light.affectsGrid;
+    }
     for (const sh::WorldLight& r : records) {
         points += r.type == sh::WorldLightType::Point;
         spots += r.type == sh::WorldLightType::Spot;
@@ -109,8 +113,6 @@ void attachWorldLights(LightContext& ctx, Log& log) {
     }
     // Lights the format could hold but that got no record: they reach no point, or a value lies
     // outside what a record may carry (said once, so that a missing light is never silent).
-    size_t eligible = 0;
-    for (const Light& light : ctx.lights) eligible += light.type != LightType::Area && light.affectsGrid;
     if (eligible > records.size())
         log.warning(strCat("WORLDLIGHTS: ", eligible - records.size(),
                            " lights not listed: they reach no point or carry values a record cannot hold"));
