@@ -290,6 +290,11 @@ cli::OptionTable<O> buildLightTable() {
          "falloff, cone, cluster, whether the SH grid holds their direct light) for engines that light models "
          "with the strongest of them directly (docs/world-lights-format.md)",
          kImplemented);
+    action({"-shnoworldlights"}, {}, 0, "off",
+           "Leave the direct light of the lights WORLDLIGHTS lists out of the SH grid, for engines that add it "
+           "back per model from the lump (indirect light, sky domes and area lights stay in the grid); implies "
+           "-sh and -worldlights",
+           kImplemented, [](O& o, Values) { o.sh = o.worldLights = o.shNoWorldLights = true; });
     return t;
 }
 

@@ -143,6 +143,8 @@ struct LightOptions {
 
     // -worldlights: the BSPX lump WORLDLIGHTS (docs/world-lights-format.md).
     bool worldLights = false;
+    // -shnoworldlights: the SH grid leaves out the direct light of the lights WORLDLIGHTS lists.
+    bool shNoWorldLights = false;
 };
 
 const cli::OptionTable<LightOptions>& lightOptionTable();

@@ -272,6 +272,7 @@ TEST(SunLights, ShaderSunSamplesAndScale) {
     std::vector<Light> c;
     appendSunLights(c, sun, 3, scales, first);
     EXPECT_EQ(c[0].skyIndex, -1);
+    EXPECT_FALSE(c[0].skyDome);
 }
 
 TEST(SunLights, SkyDomeLayout) {
@@ -286,6 +287,7 @@ TEST(SunLights, SkyDomeLayout) {
     float sum = 0;
     for (const Light& l : suns) sum += l.photons;
     EXPECT_NEAR(sum, 100.0f, 1e-3);
+    for (const Light& l : suns) EXPECT_TRUE(l.skyDome);  // sky ambient, as opposed to a sun
     EXPECT_NEAR(suns[0].normal.z, std::sin(degToRad(15.0f)), 1e-5);
     EXPECT_NEAR(suns[8].normal.z, std::sin(degToRad(45.0f)), 1e-5);
     // The second ring is staggered by half an azimuth step (45 / 2 degrees).

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "../light/light_test_util.h"
 #include "file_io.h"
@@ -88,6 +89,22 @@ int clusterAt(const bsp::Bsp& b, Vec3 p) {
         node = side >= 0 ? n.children[0] : n.children[1];
     }
     return b.leafs[size_t(-node - 1)].cluster;
+}
+
+// Suns get records; the many suns of a sky dome are sky ambient and stay in the SH grid unlisted.
+TEST(WorldLightRecords, SkyDomeSunsAreNotListed) {
+    Light sun;
+    sun.type = LightType::Sun;
+    sun.photons = 100;
+    sun.normal = {0, 0, 1};
+    WorldLightSettings settings;
+    settings.shGrid = true;
+    settings.outOfShGrid = true;
+    ASSERT_TRUE(worldLightRecord(sun, settings).has_value());
+    EXPECT_TRUE(keptOutOfShGrid(sun, settings));
+    sun.skyDome = true;
+    EXPECT_FALSE(worldLightRecord(sun, settings).has_value());
+    EXPECT_FALSE(keptOutOfShGrid(sun, settings));
 }
 
 class WorldLightsCompile : public ::testing::Test {
@@ -241,6 +258,41 @@ TEST_F(WorldLightsCompile, RecordsSumToTheShGridAtOpenPoints) {
                 ++checked;
             }
     EXPECT_GE(checked, 20);
+}
+
+// -shnoworldlights: the same records, none flagged as in the SH grid, the legacy grid untouched, and
+// an SH grid without their direct light. Every light of the room is listed and the room has no
+// ambient, so that grid is black where the full one is lit.
+TEST_F(WorldLightsCompile, ShNoWorldLightsLeavesTheListedLightsOutOfTheShGrid) {
+    const bsp::Bsp full = bsp::readBsp(bspPath_);
+    LightOptions options = worldLightOptions();
+    options.shNoWorldLights = true;
+    const std::vector<uint8_t> lump = litLump(bspPath_, options, 2);
+    std::vector<sh::WorldLight> records;
+    std::string error;
+    ASSERT_TRUE(sh::decodeWorldLights(lump.data(), lump.size(), records, error)) << error;
+    ASSERT_EQ(records.size(), records_.size());
+    for (size_t i = 0; i < records.size(); ++i) {
+        EXPECT_EQ(records[i].flags, 0u);
+        sh::WorldLight flagged = records[i];
+        flagged.flags = records_[i].flags;
+        EXPECT_EQ(sh::encodeWorldLights(std::span(&flagged, 1)), sh::encodeWorldLights(std::span(&records_[i], 1)));
+    }
+    const bsp::Bsp left = bsp::readBsp(bspPath_);
+    ASSERT_EQ(left.lightGrid.size(), full.lightGrid.size());
+    EXPECT_EQ(std::memcmp(left.lightGrid.data(), full.lightGrid.data(), full.lightGrid.size() * sizeof(bsp::GridPoint)), 0);
+    sh::GridSH fullGrid, leftGrid;
+    ASSERT_TRUE(sh::decodeGridLump(full.shGrid.data(), full.shGrid.size(), fullGrid, error)) << error;
+    ASSERT_TRUE(sh::decodeGridLump(left.shGrid.data(), left.shGrid.size(), leftGrid, error)) << error;
+    ASSERT_EQ(leftGrid.points.size(), fullGrid.points.size());
+    double fullSum = 0, leftSum = 0;
+    for (size_t i = 0; i < fullGrid.points.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            fullSum += std::fabs(fullGrid.points[i].coeffs[0][c]);
+            leftSum += std::fabs(leftGrid.points[i].coeffs[0][c]);
+        }
+    EXPECT_GT(fullSum, 1.0);
+    EXPECT_EQ(leftSum, 0.0);
 }
 
 TEST_F(WorldLightsCompile, ThreadCountAndRelight) {

@@ -18,6 +18,7 @@
 #include "light_text.h"
 #include "progress.h"
 #include "sh_polygon.h"
+#include "world_lights_export.h"
 
 namespace q3::light {
 namespace {
@@ -321,6 +322,12 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
     const GridNudges offsets(useTree ? nudgeOffsets(nudgeRadius, std::max(1.0f, nudgeRadius / 2.0f))
                                      : std::vector<Vec3>{});
     const float gridScale = ctx.options.gridScale;
+    // -shnoworldlights: the lights the WORLDLIGHTS lump lists give the SH grid no direct light.
+    const WorldLightSettings listing = worldLightSettings(ctx.options);
+    std::vector<uint8_t> outOfGrid(ctx.lights.size(), 0);
+    size_t leftOut = 0;
+    for (size_t i = 0; i < ctx.lights.size(); ++i) leftOut += outOfGrid[i] = keptOutOfShGrid(ctx.lights[i], listing);
+    if (leftOut) log.info(strCat("SH grid: the direct light of ", leftOut, " world lights is left out (-shnoworldlights)"));
 
     std::vector<uint8_t> solid(numPoints, 0), nudged(numPoints, 0);
     std::vector<Vec3> origins(ctx.options.shGather ? numPoints : 0);  // only the gather reads them
@@ -352,7 +359,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
             Vec3 total = ctx.world.ambient;
             for (uint32_t lightIndex : reaching.candidates) {
                 const Light& light = ctx.lights[lightIndex];
-                if (light.style != 0) continue;  // IBSP grids hold style 0 only (styled light is switchable)
+                if (light.style != 0 || outOfGrid[lightIndex]) continue;  // IBSP grids hold style 0 only (styled light is switchable)
                 std::optional<LightContribution> c = addLightToGridPointSH(acc, light, placed->origin, placed->cluster, env);
                 if (!c) continue;
                 total += c->color;
@@ -393,7 +400,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
             clearOfSolid.clear();
             for (size_t k = 0; k < reaching.candidates.size(); ++k) {
                 const uint32_t i = reaching.candidates[k];
-                if (!lightReachesBounds(ctx.lights[i], placedBox, envelopes[i]) ||
+                if (outOfGrid[i] || !lightReachesBounds(ctx.lights[i], placedBox, envelopes[i]) ||
                     !mayLightGridIn(ctx.lights[i], placedBox, env.settings))
                     continue;
                 candidates.push_back(i);

@@ -61,8 +61,18 @@ std::optional<sh::WorldLight> q3map2Record(const Light& light, const WorldLightS
 
 }  // namespace
 
+WorldLightSettings worldLightSettings(const LightOptions& options) {
+    WorldLightSettings settings;
+    settings.gridScale = options.gridScale;
+    settings.shGrid = options.sh && !options.noGrid;
+    settings.sunOnly = options.sunOnly;
+    settings.forceFast = options.fast || options.faster || options.fastGrid;
+    settings.outOfShGrid = options.shNoWorldLights;
+    return settings;
+}
+
 std::optional<sh::WorldLight> worldLightRecord(const Light& light, const WorldLightSettings& settings) {
-    if (light.type == LightType::Area || !light.affectsGrid) return std::nullopt;
+    if (light.type == LightType::Area || light.skyDome || !light.affectsGrid) return std::nullopt;
     std::optional<sh::WorldLight> record = light.controlled
                                                ? std::optional(controlledRecord(light, *light.controlled, settings.gridScale))
                                                : q3map2Record(light, settings);
@@ -76,10 +86,14 @@ std::optional<sh::WorldLight> worldLightRecord(const Light& light, const WorldLi
     if (!sun) r.origin = toArray(light.origin);
     if (sun || light.type == LightType::Spot) r.direction = toArray(light.normal);
     // The SH grid holds style 0 only; -sunonly keeps every other light out of it.
-    const bool inGrid = settings.shGrid && light.style == 0 && (sun || !settings.sunOnly);
+    const bool inGrid = settings.shGrid && !settings.outOfShGrid && light.style == 0 && (sun || !settings.sunOnly);
     r.flags = inGrid ? sh::kWorldLightInShGrid : 0u;
     if (!sh::checkWorldLight(r).empty()) return std::nullopt;  // values no map light has (e.g. beyond 1e6 units)
     return record;
+}
+
+bool keptOutOfShGrid(const Light& light, const WorldLightSettings& settings) {
+    return settings.outOfShGrid && worldLightRecord(light, settings).has_value();
 }
 
 std::vector<sh::WorldLight> worldLightRecords(std::span<const Light> lights, const WorldLightSettings& settings) {
@@ -94,17 +108,14 @@ void attachWorldLights(LightContext& ctx, Log& log) {
         if (ctx.bsp.removeBspx(sh::kWorldLightsLumpName)) log.info("removed the WORLDLIGHTS lump of an earlier run");
         return;
     }
-    WorldLightSettings settings;
-    settings.gridScale = ctx.options.gridScale;
-    settings.shGrid = ctx.options.sh && !ctx.options.noGrid;
-    settings.sunOnly = ctx.options.sunOnly;
-    settings.forceFast = ctx.options.fast || ctx.options.faster || ctx.options.fastGrid;
+    const WorldLightSettings settings = worldLightSettings(ctx.options);
     const std::vector<sh::WorldLight> records = worldLightRecords(ctx.lights, settings);
     // Area lights are never listed; the other lights that affect the grid should all be.
-    size_t points = 0, spots = 0, suns = 0, areas = 0, eligible = 0;
+    size_t points = 0, spots = 0, suns = 0, areas = 0, domes = 0, eligible = 0;
     for (const Light& light : ctx.lights) {
         areas += light.type == LightType::Area;
-        eligible += light.type != LightType::Area && light.affectsGrid;
+        domes += light.skyDome;
+        eligible += light.type != LightType::Area && !light.skyDome && light.affectsGrid;
     }
     for (const sh::WorldLight& r : records) {
         points += r.type == sh::WorldLightType::Point;
@@ -118,7 +129,7 @@ void attachWorldLights(LightContext& ctx, Log& log) {
                            " lights not listed: they reach no point or carry values a record cannot hold"));
     std::vector<uint8_t> lump = sh::encodeWorldLights(records);
     log.info(strCat("WORLDLIGHTS: ", records.size(), " lights (", points, " point, ", spots, " spot, ", suns,
-                    " sun), ", lump.size(), " bytes; ", areas, " area lights not listed"));
+                    " sun), ", lump.size(), " bytes; ", areas, " area lights and ", domes, " sky dome suns not listed"));
     ctx.bsp.setBspx(sh::kWorldLightsLumpName, std::move(lump));
 }
 

@@ -23,11 +23,19 @@ struct WorldLightSettings {
     bool shGrid = false;     // an SH grid is written in this run
     bool sunOnly = false;    // -sunonly: only suns reach the grids
     bool forceFast = false;  // -fast / -faster / -fastgrid: every light ends at its envelope in the grids
+    bool outOfShGrid = false;  // -shnoworldlights: the SH grid leaves the listed lights' direct light out
 };
 
-// The record of one light; nullopt for lights a record cannot stand for (area lights) and for
-// lights that add nothing to the grids (spawnflags 16, no positive intensity, empty envelope).
+struct LightOptions;
+WorldLightSettings worldLightSettings(const LightOptions& options);
+
+// The record of one light; nullopt for lights a record cannot stand for (area lights, the suns of a
+// sky dome, which are sky ambient) and for lights that add nothing to the grids (spawnflags 16, no
+// positive intensity, empty envelope).
 std::optional<sh::WorldLight> worldLightRecord(const Light& light, const WorldLightSettings& settings);
+
+// Whether the SH grid leaves out the direct light of `light` (it is listed, with -shnoworldlights).
+bool keptOutOfShGrid(const Light& light, const WorldLightSettings& settings);
 
 // Records of every light that has one, in light order.
 std::vector<sh::WorldLight> worldLightRecords(std::span<const Light> lights, const WorldLightSettings& settings);

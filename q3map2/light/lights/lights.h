@@ -89,6 +89,8 @@ struct Light {
 
     // Suns: -1 lights through any sky, otherwise only sky surfaces of this sky index.
     int skyIndex = -1;
+    // Suns: one of the many parallel lights of a q3map_skyLight dome (sky ambient), not a sun.
+    bool skyDome = false;
 
     // Controlled model, when the entity has any of its keys.
     std::optional<ControlledParams> controlled;

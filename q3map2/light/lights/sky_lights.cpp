@@ -159,6 +159,7 @@ void appendSkyLights(std::vector<Light>& out, const SkyLightDirective& sky, Vec3
         sun.direction = {0, 0, 1};
         appendSunLights(out, sun, skyIndex, scales, unused);
     }
+    for (size_t i = first; i < out.size(); ++i) out[i].skyDome = true;
     if (!probes.empty()) {
         float brightest = 0;
         for (size_t i = first; i < out.size(); ++i) {
