@@ -61,6 +61,10 @@ std::vector<uint8_t> encodeWorldLights(std::span<const WorldLight> lights);
 // What is wrong with one record (no lump name, no index), or an empty string.
 std::string checkWorldLight(const WorldLight& light);
 
+// Constants of the evaluation formulas, shared with the generated GLSL (world_lights_glsl.h).
+constexpr float kControlledSquareStart = 16.0f;  // the controlled model's 1/d^2 part starts at q3map2's clamp
+constexpr float kDegreesPerRadian = 180.0f / 3.14159265358979323846f;
+
 // The controlled model's distance falloff and spot cone (light-models.md; angles in degrees, half
 // the full cone angles), shared with the compiler so that both compute them alike.
 float controlledFalloffFactor(float distance, float start, float end, float curvature);

@@ -16,8 +16,6 @@ float dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] *
 float length3(const V3& a) { return std::sqrt(dot3(a, a)); }
 V3 scaled(const V3& a, float s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 
-constexpr float kDegreesPerRadian = 180.0f / 3.14159265358979323846f;
-
 // q3map2's spot cone: 1 inside, a linear fade over the last `fadeWidth` units of the cone's radius
 // at the point's distance along the axis, 0 outside and behind.
 float q3map2Spot(const WorldLight& l, const V3& point) {
@@ -63,7 +61,7 @@ float controlledFalloffFactor(float d, float start, float end, float curvature) 
     if (d <= start) return 1;
     if (d >= end) return 0;
     const float lin = 1 - (d - start) / (end - start);
-    const float s = std::max(start, 16.0f);  // the inverse-square part starts at q3map2's 16-unit clamp
+    const float s = std::max(start, kControlledSquareStart);
     const float see = (s * s) / (end * end);
     float isq = see < 1 ? ((s * s) / (d * d) - see) / (1 - see) : lin;
     isq = std::clamp(isq, 0.f, 1.f);
