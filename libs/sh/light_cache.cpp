@@ -100,14 +100,16 @@ LightCacheResult LightCache::query(const float position[3], int maxLocal) const 
     }
     std::sort(candidates.begin(), candidates.end(), ranksBefore);
 
+    // Every candidate is traced: a blocked light neither takes a local slot nor reaches the probe.
     SH9Color rest;
     for (const Candidate& c : candidates) {
         const WorldLight& light = lights_[c.index];
+        if (!reaches(light, position)) {
+            ++result.occludedCount;
+            continue;
+        }
         if (result.localCount < maxLocal) {
-            if (reaches(light, position))
-                result.local[result.localCount++] = {c.index, c.arriving};
-            else
-                ++result.occludedCount;
+            result.local[result.localCount++] = {c.index, c.arriving};
             continue;
         }
         Vec3d towards;

@@ -250,15 +250,21 @@ TEST(LightCacheProjection, TheRestIsTheProjectionOfEvaluateWorldLight) {
     const std::array<float, 3> p{100, 200, 64};
     const LightCacheResult r = cache.query(p.data(), 1);
     ASSERT_EQ(r.localCount, 1);
-    ASSERT_EQ(r.projectedCount, map.lights.size() - 1);
+    // Every light is traced: those the boxes hide reach neither the local set nor the probe.
+    uint32_t reaching = 0;
+    for (const WorldLight& light : cache.lights()) reaching += cache.reaches(light, p.data()) ? 1 : 0;
+    ASSERT_LT(reaching, map.lights.size());
+    ASSERT_GE(reaching, 3u);
+    ASSERT_EQ(r.projectedCount, reaching - 1);
+    ASSERT_EQ(r.occludedCount, map.lights.size() - reaching);
 
     const std::vector<Vec3d> normals = test::fibonacciSphere(8192);
     const double weight = 4 * kPi / double(normals.size());
     double projected[kCoeffCount][3] = {};
     double scale[3] = {};
     for (uint32_t li = 0; li < map.lights.size(); ++li) {
-        if (li == r.local[0].index) continue;
         const WorldLight& light = cache.lights()[li];
+        if (li == r.local[0].index || !cache.reaches(light, p.data())) continue;
         const auto arriving = worldLightArriving(light, p);
         for (int c = 0; c < 3; ++c) scale[c] += std::fabs(arriving[size_t(c)]);
         for (const Vec3d& n : normals) {
