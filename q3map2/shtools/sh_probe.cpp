@@ -49,6 +49,15 @@ ProbeReport probeBsp(std::span<const uint8_t> bspImage, const float position[3],
         report.legacyFaces = sh::toAmbientCube(report.legacy);
         report.legacyLighting = sh::toLegacyLighting(report.legacy);
     }
+
+    sh::LightCache cache;
+    if (std::string err = cache.loadFromBsp(bspImage.data(), bspImage.size(), name); !err.empty())
+        throw bsp::BspError(err);
+    if (!cache.lights().empty()) {
+        report.hasWorldLights = true;
+        report.cache = cache.query(position);
+        report.cacheLights = cache.lights();
+    }
     return report;
 }
 
@@ -75,6 +84,27 @@ std::vector<std::string> formatProbeReport(const ProbeReport& r) {
                       l.direction[2]);
         lines.emplace_back(text);
     }
+    if (!r.hasWorldLights) {
+        lines.emplace_back("light cache: no WORLDLIGHTS lump (-light -worldlights)");
+        return lines;
+    }
+    const sh::LightCacheResult& c = r.cache;
+    std::snprintf(text, sizeof(text),
+                  "light cache: %zu world lights; cluster %d: %d local, %u projected into the probe, %u hidden",
+                  r.cacheLights.size(), c.cluster, c.localCount, c.projectedCount, c.occludedCount);
+    lines.emplace_back(text);
+    for (int i = 0; i < c.localCount; ++i) {
+        const sh::WorldLight& l = r.cacheLights[c.local[i].index];
+        const char* type = l.type == sh::WorldLightType::Sun ? "sun" : l.type == sh::WorldLightType::Spot ? "spot" : "point";
+        const float* where = l.type == sh::WorldLightType::Sun ? l.direction.data() : l.origin.data();
+        std::snprintf(text, sizeof(text), "  local %d: light %u, %s %s (%g %g %g), arriving %s", i + 1,
+                      c.local[i].index, type, l.type == sh::WorldLightType::Sun ? "towards" : "at", where[0],
+                      where[1], where[2], rgbText(c.local[i].arriving.data()).c_str());
+        lines.emplace_back(text);
+    }
+    const sh::AmbientCube probeFaces = sh::toAmbientCube(c.probe);
+    lines.emplace_back("  probe with the projected lights, irradiance towards:");
+    for (int f = 0; f < 6; ++f) lines.push_back(std::string("    ") + kFaceNames[f] + "  " + rgbText(probeFaces.face[f]));
     return lines;
 }
 

@@ -12,6 +12,7 @@
 
 #include "common_options.h"
 #include "image.h"
+#include "light_cache.h"
 #include "log.h"
 #include "option_table.h"
 #include "option_parser.h"
@@ -51,6 +52,10 @@ struct ProbeReport {
     sh::GridPointSH legacy{};             // the legacy grid at the same point, as SH
     sh::AmbientCube legacyFaces;
     sh::LegacyLighting legacyLighting;    // ambient / directed / direction of the legacy sample
+    // The light cache's answer when the BSP has a WORLDLIGHTS lump (-light -worldlights).
+    bool hasWorldLights = false;
+    sh::LightCacheResult cache;
+    std::vector<sh::WorldLight> cacheLights;  // the lump's records, cache.local indexes them
 };
 
 // Throws bsp::BspError naming `name` when the BSP is malformed or has no SH grid.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 #include "file_io.h"
@@ -14,6 +15,7 @@
 #include "light_context.h"
 #include "light_contribution.h"
 #include "light_stage.h"
+#include "sh_tools.h"
 #include "test_data.h"
 #include "world_lights_export.h"
 
@@ -87,6 +89,7 @@ public:
         LightOptions leftOut = fastGridOptions();
         leftOut.shNoWorldLights = true;
         const std::vector<uint8_t> without = lightCopy(in, dir / "cache", leftOut, "-light -fast -nolm -shnoworldlights");
+        cacheBytes_ = without;
         error_ = fullGrid_.loadFromBsp(withLights.data(), withLights.size(), "full");
         if (error_.empty()) error_ = cache_.loadFromBsp(without.data(), without.size(), "cache");
         if (!error_.empty()) return;
@@ -106,6 +109,7 @@ public:
     }
 
     const std::string& error() const { return error_; }
+    const std::vector<uint8_t>& cacheBytes() const { return cacheBytes_; }
     const sh::LightCache& cache() const { return cache_; }
     size_t listedLights() const { return listed_.size(); }
     bool open(Vec3 p) const { return ctx_.tree->clusterForPoint(p) >= 0 && !ctx_.tree->pointInSolid(p); }
@@ -177,6 +181,7 @@ public:
 
 private:
     std::string error_;
+    std::vector<uint8_t> cacheBytes_;
     sh::GridRuntime fullGrid_;
     sh::LightCache cache_;
     LightContext ctx_;
@@ -295,6 +300,29 @@ TEST(LightCacheAccuracy, PassingBehindThePillarDropsTheRedLight) {
     EXPECT_EQ(behind, 0);
     // One 8-unit step carries most of the light: a step, not a ramp.
     EXPECT_GT(largestStep, 0.5f * atSide);
+}
+
+// -shprobe prints what the cache picks: behind the pillar the red light is hidden, beside it both
+// coloured lights are local (the spotlight's cone does not reach either point).
+TEST(LightCacheAccuracy, ShProbeListsTheLightsTheCachePicks) {
+    const LitMap map(pillarRoom());
+    ASSERT_EQ(map.error(), "");
+    auto probe = [&](float y) {
+        const float at[3] = {400, y, 64};
+        return shtools::probeBsp(map.cacheBytes(), at, "pillar_lights.bsp");
+    };
+    const shtools::ProbeReport beside = probe(64), behind = probe(256);
+    ASSERT_TRUE(beside.hasWorldLights);
+    EXPECT_EQ(beside.cache.localCount, 2);
+    EXPECT_EQ(beside.cache.occludedCount, 0u);
+    EXPECT_EQ(behind.cache.localCount, 1);
+    EXPECT_EQ(behind.cache.occludedCount, 1u);
+    const std::vector<std::string> lines = shtools::formatProbeReport(behind);
+    const std::string text = std::accumulate(lines.begin(), lines.end(), std::string(),
+                                             [](std::string a, const std::string& b) { return a + b + "\n"; });
+    EXPECT_NE(text.find("light cache: 3 world lights; cluster "), std::string::npos) << text;
+    EXPECT_NE(text.find(": 1 local, 0 projected into the probe, 1 hidden"), std::string::npos) << text;
+    EXPECT_NE(text.find("  local 1: light 1, point at (416 256 128), arriving"), std::string::npos) << text;
 }
 
 // oacmpdm1 as shipped, relit: paths from every player start towards every point or spot light
