@@ -10,184 +10,24 @@
 #include <numeric>
 #include <optional>
 
-#include "file_io.h"
-#include "light_cache.h"
-#include "light_context.h"
-#include "light_contribution.h"
-#include "light_stage.h"
+#include "lightcache_compare.h"
 #include "sh_tools.h"
 #include "test_data.h"
-#include "world_lights_export.h"
 
 namespace q3::light {
 namespace {
 
 namespace fs = std::filesystem;
 
+using cachetest::LitMap;
+using cachetest::MapInputs;
+
 constexpr float kNearDistance = 128;  // the "within 128 units of a point or spot light"
 constexpr int kNormals = 48;
 
-struct MapInputs {
-    fs::path bsp;                        // the unlit input
-    fs::path mapSource;                  // its .map, where -light finds the light entities
-    std::vector<std::string> basePaths;  // game data for the shaders, if any
-    std::string fsGame;
-};
-
-CommonOptions commonFor(const MapInputs& in, const fs::path& bsp, const std::string& commandLine) {
-    CommonOptions common;
-    common.mapPath = bsp;
-    common.basePaths = in.basePaths;
-    common.fsGame = in.fsGame;
-    common.threads = 2;
-    common.commandLine = commandLine;
-    return common;
-}
-
-LightOptions fastGridOptions() {
-    LightOptions options;
-    options.fast = true;
-    options.noLightmaps = true;  // models are lit by the grid and the lights only
-    options.sh = true;
-    options.worldLights = true;
-    return options;
-}
-
-// Lights a copy of the input in its own folder and returns the written file's bytes.
-std::vector<uint8_t> lightCopy(const MapInputs& in, const fs::path& dir, const LightOptions& options,
-                               const std::string& commandLine) {
-    fs::create_directories(dir / "maps");
-    const fs::path bsp = dir / "maps" / in.bsp.filename();
-    fs::copy_file(in.bsp, bsp, fs::copy_options::overwrite_existing);
-    fs::copy_file(in.mapSource, fs::path(bsp).replace_extension(".map"), fs::copy_options::overwrite_existing);
-    Log log(false);
-    EXPECT_EQ(runLightStage(options, commonFor(in, bsp, commandLine), log), 0);
-    return readFileBytes(bsp);
-}
-
 std::array<float, 3> arr(Vec3 v) { return {v.x, v.y, v.z}; }
 
-std::vector<Vec3> fibonacciNormals(int count) {
-    std::vector<Vec3> out;
-    const double golden = M_PI * (3 - std::sqrt(5.0));
-    for (int k = 0; k < count; ++k) {
-        const double z = 1 - (2 * k + 1) / double(count);
-        const double r = std::sqrt(1 - z * z);
-        out.push_back({float(r * std::cos(golden * k)), float(r * std::sin(golden * k)), float(z)});
-    }
-    return out;
-}
-
-// Both lit files, the light cache of the one without the world lights in its grid, and the
-// compiler's lights and scene for the brute force.
-class LitMap {
-public:
-    explicit LitMap(const MapInputs& in) {
-        const fs::path dir = test::tempDir() / ("lightcache_" + in.bsp.stem().string());
-        fs::remove_all(dir);
-        const std::vector<uint8_t> withLights = lightCopy(in, dir / "full", fastGridOptions(), "-light -fast -nolm -sh -worldlights");
-        LightOptions leftOut = fastGridOptions();
-        leftOut.shNoWorldLights = true;
-        const std::vector<uint8_t> without = lightCopy(in, dir / "cache", leftOut, "-light -fast -nolm -shnoworldlights");
-        cacheBytes_ = without;
-        error_ = fullGrid_.loadFromBsp(withLights.data(), withLights.size(), "full");
-        if (error_.empty()) error_ = cache_.loadFromBsp(without.data(), without.size(), "cache");
-        if (!error_.empty()) return;
-
-        Log log(false);
-        ctx_.options = leftOut;
-        loadLightInputs(ctx_, commonFor(in, dir / "cache" / "maps" / in.bsp.filename(), "-light"), log);
-        buildSurfaceGeometry(ctx_);
-        buildScene(ctx_);
-        createLights(ctx_, log);
-        const WorldLightSettings settings = worldLightSettings(ctx_.options);
-        for (const Light& light : ctx_.lights)
-            if (worldLightRecord(light, settings)) listed_.push_back(&light);
-        env_ = surfaceLightingEnv(ctx_);
-        env_.settings.forceFast = true;
-        if (ctx_.scene) env_.rayMask = ctx_.scene->receiverMask(1);
-    }
-
-    const std::string& error() const { return error_; }
-    const std::vector<uint8_t>& cacheBytes() const { return cacheBytes_; }
-    const sh::LightCache& cache() const { return cache_; }
-    size_t listedLights() const { return listed_.size(); }
-    bool open(Vec3 p) const { return ctx_.tree->clusterForPoint(p) >= 0 && !ctx_.tree->pointInSolid(p); }
-
-    // Direct light of every listed light, occluded as the compiler occludes a luxel at `p`.
-    std::vector<Vec3> bruteForceDirect(Vec3 p, const std::vector<Vec3>& normals) const {
-        std::vector<Vec3> out(normals.size());
-        const int cluster = ctx_.tree->clusterForPoint(p);
-        for (const Light* light : listed_) {
-            const std::optional<LightContribution> c = lightToGridPoint(*light, p, cluster, env_);
-            if (!c) continue;
-            for (size_t k = 0; k < normals.size(); ++k) {
-                const float cosine = dot(normals[k], c->direction);
-                const float incidence = light->controlled && light->type != LightType::Sun
-                                            ? controlledIncidence(*light->controlled, cosine)
-                                            : std::max(0.f, cosine);
-                out[k] += c->color * (incidence / 255.0f * ctx_.options.gridScale);
-            }
-        }
-        return out;
-    }
-
-    struct Errors {
-        double shAlone = 0;     // mean over the normals of |SH grid alone - brute force|, RGB summed
-        double withCache = 0;   // the same for the grid without the lights plus the light cache
-        double truthScale = 0;  // mean |brute force|, for relative figures
-    };
-
-    Errors errorsAt(Vec3 p, const std::vector<Vec3>& normals) const {
-        const float at[3] = {p.x, p.y, p.z};
-        const sh::GridPointSH full = fullGrid_.sample(at);
-        const sh::LightCacheResult r = cache_.query(at);
-        const sh::GridPointSH rest = cache_.grid().sample(at);
-        const std::vector<Vec3> direct = bruteForceDirect(p, normals);
-        Errors e;
-        for (size_t k = 0; k < normals.size(); ++k) {
-            const float n[3] = {normals[k].x, normals[k].y, normals[k].z};
-            float fullRgb[3], restRgb[3], probeRgb[3];
-            sh::irradianceAt(full, n, fullRgb);
-            sh::irradianceAt(rest, n, restRgb);
-            sh::irradianceAt(r.probe, n, probeRgb);
-            Vec3 cached{probeRgb[0], probeRgb[1], probeRgb[2]};
-            for (int i = 0; i < r.localCount; ++i) {
-                const auto v = sh::evaluateWorldLight(cache_.lights()[r.local[i].index], arr(p), arr(normals[k]));
-                cached += Vec3{v[0], v[1], v[2]};
-            }
-            const Vec3 truth = direct[k] + Vec3{restRgb[0], restRgb[1], restRgb[2]};
-            const Vec3 alone{fullRgb[0], fullRgb[1], fullRgb[2]};
-            for (int c = 0; c < 3; ++c) {
-                e.shAlone += std::fabs(alone[c] - truth[c]);
-                e.withCache += std::fabs(cached[c] - truth[c]);
-                e.truthScale += std::fabs(truth[c]);
-            }
-        }
-        e.shAlone /= double(normals.size());
-        e.withCache /= double(normals.size());
-        e.truthScale /= double(normals.size());
-        return e;
-    }
-
-    // Distance from `p` to the nearest point or spot light the lump lists.
-    float nearestLocalLight(Vec3 p) const {
-        float best = INFINITY;
-        for (const sh::WorldLight& l : cache_.lights())
-            if (l.type != sh::WorldLightType::Sun)
-                best = std::min(best, length(p - Vec3{l.origin[0], l.origin[1], l.origin[2]}));
-        return best;
-    }
-
-private:
-    std::string error_;
-    std::vector<uint8_t> cacheBytes_;
-    sh::GridRuntime fullGrid_;
-    sh::LightCache cache_;
-    LightContext ctx_;
-    std::vector<const Light*> listed_;
-    LightingEnv env_;
-};
+fs::path workFor(const MapInputs& in) { return test::tempDir() / ("lightcache_" + in.bsp.stem().string()); }
 
 struct Tally {
     double shAlone = 0, withCache = 0, truth = 0;
@@ -206,7 +46,7 @@ struct Tally {
 // spot light and elsewhere.
 void tallyPaths(const LitMap& map, const std::vector<std::pair<Vec3, Vec3>>& paths, float step, Tally& near,
                 Tally& elsewhere) {
-    const std::vector<Vec3> normals = fibonacciNormals(kNormals);
+    const std::vector<Vec3> normals = cachetest::fibonacciNormals(kNormals);
     for (const auto& [from, to] : paths) {
         const float len = length(to - from);
         const int steps = std::max(1, int(len / step));
@@ -238,7 +78,7 @@ MapInputs pillarRoom() {
 }
 
 TEST(LightCacheAccuracy, PillarRoomPathsHalveTheGridsErrorNearLights) {
-    const LitMap map(pillarRoom());
+    const LitMap map(pillarRoom(), workFor(pillarRoom()));
     ASSERT_EQ(map.error(), "");
     ASSERT_EQ(map.listedLights(), 3u);
     ASSERT_EQ(map.cache().lights().size(), 3u);
@@ -258,7 +98,7 @@ TEST(LightCacheAccuracy, PillarRoomPathsHalveTheGridsErrorNearLights) {
 // it: the red light leaves the local set for the stretch the pillar hides it, and its light on
 // the model's west side steps to nothing there, where the SH grid only blurs it.
 TEST(LightCacheAccuracy, PassingBehindThePillarDropsTheRedLight) {
-    const LitMap map(pillarRoom());
+    const LitMap map(pillarRoom(), workFor(pillarRoom()));
     ASSERT_EQ(map.error(), "");
     int red = -1;
     for (size_t i = 0; i < map.cache().lights().size(); ++i) {
@@ -305,7 +145,7 @@ TEST(LightCacheAccuracy, PassingBehindThePillarDropsTheRedLight) {
 // -shprobe prints what the cache picks: behind the pillar the red light is hidden, beside it both
 // coloured lights are local (the spotlight's cone does not reach either point).
 TEST(LightCacheAccuracy, ShProbeListsTheLightsTheCachePicks) {
-    const LitMap map(pillarRoom());
+    const LitMap map(pillarRoom(), workFor(pillarRoom()));
     ASSERT_EQ(map.error(), "");
     auto probe = [&](float y) {
         const float at[3] = {400, y, 64};
@@ -325,6 +165,31 @@ TEST(LightCacheAccuracy, ShProbeListsTheLightsTheCachePicks) {
     EXPECT_NE(text.find("  local 1: light 1, point at (416 256 128), arriving"), std::string::npos) << text;
 }
 
+// The path picture: in the pillar room the light cache is brute force to the display byte, the SH
+// grid alone is not (it blurs the lights' direction and the pillar's shadow).
+TEST(LightCacheAccuracy, PathPictureRowsAreBruteForceGridAndCache) {
+    const LitMap map(pillarRoom(), workFor(pillarRoom()));
+    ASSERT_EQ(map.error(), "");
+    std::vector<Vec3> positions;
+    for (float y = 40; y <= 472; y += 48) positions.push_back({400, y, 64});
+    constexpr int kCell = 24;
+    const Image image = cachetest::renderPathPicture(map, positions, kCell, 2.0f);
+    ASSERT_EQ(image.width, int(positions.size()) * kCell);
+    ASSERT_EQ(image.height, 3 * kCell);
+    int cacheOff = 0, gridOff = 0, lit = 0;
+    for (int y = 0; y < kCell; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int ch = 0; ch < 3; ++ch) {
+                const int truth = image.texel(x, y)[ch];
+                lit += truth > 40;
+                cacheOff = std::max(cacheOff, std::abs(image.texel(x, y + 2 * kCell)[ch] - truth));
+                gridOff = std::max(gridOff, std::abs(image.texel(x, y + kCell)[ch] - truth));
+            }
+    EXPECT_GT(lit, 1000);
+    EXPECT_LE(cacheOff, 2);
+    EXPECT_GE(gridOff, 20);
+}
+
 // oacmpdm1 as shipped, relit: paths from every player start towards every point or spot light
 // within 512 units, and between neighbouring starts.
 TEST(LightCacheAccuracy, Oacmpdm1PathsHalveTheGridsErrorNearLights) {
@@ -333,7 +198,8 @@ TEST(LightCacheAccuracy, Oacmpdm1PathsHalveTheGridsErrorNearLights) {
     for (const fs::path& p : test::oacmpMapSources())
         if (p.stem() == "oacmpdm1") mapSource = p;
     ASSERT_FALSE(mapSource.empty()) << "oacmpdm1.map missing from the data cache";
-    const LitMap map(MapInputs{shipped, mapSource, {test::openArenaBase().string()}, "baseoa"});
+    const MapInputs in{shipped, mapSource, {test::openArenaBase().string()}, "baseoa"};
+    const LitMap map(in, workFor(in));
     ASSERT_EQ(map.error(), "");
     ASSERT_GT(map.listedLights(), 10u);
     const bsp::Bsp b = bsp::readBsp(shipped);
