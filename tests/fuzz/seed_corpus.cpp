@@ -316,7 +316,7 @@ void lightCacheSeeds(const fs::path& out) {
     sun.intensity = {1, 1, 1};
     room.lights.push_back(sun);
     room.boxes[1].shader = t::kShaderSky;
-    const std::vector<uint8_t> gridLump = test::makeShGridLump(2, 2, 2);
+    const std::vector<uint8_t> gridLump = q3::bsp::test::makeShGridLump(2, 2, 2);
     q3::sh::GridSH grid;
     std::string error;
     if (!q3::sh::decodeGridLump(gridLump.data(), gridLump.size(), grid, error)) throw std::runtime_error(error);
