@@ -17,6 +17,7 @@ constexpr std::array kEntries = {
     FuzzEntry{"pk3", fuzzPk3, "pk3 archives: Pk3Archive table of contents and entries, Vfs look-ups and listings"},
     FuzzEntry{"prt", fuzzPrt, ".prt reader: parsePortalFile; on small files the merges, base vis, passages and every flow mode"},
     FuzzEntry{"world_lights", fuzzWorldLights, "WORLDLIGHTS lump: decodeWorldLights, re-encode, evaluateWorldLight of every record"},
+    FuzzEntry{"lightcache", fuzzLightCache, "light cache: LightCache::loadFromBsp (tree, brushes, visibility, WORLDLIGHTS, grid), queries at the origin, far away and by each light"},
 };
 
 }  // namespace

@@ -51,6 +51,7 @@ void fuzzJsonPack(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPk3(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzPrt(std::span<const uint8_t> input, const FuzzContext& context);
 void fuzzWorldLights(std::span<const uint8_t> input, const FuzzContext& context);
+void fuzzLightCache(std::span<const uint8_t> input, const FuzzContext& context);
 
 // Throws PropertyViolation when -vis's reader refuses `text` (a portal file -bsp wrote).
 void checkPortalFileReads(std::string_view text);

@@ -12,6 +12,7 @@
 #include "sh_grid_lump.h"
 #include "synthetic_bsp.h"
 #include "../sh/world_lights_samples.h"
+#include "light_cache_test_bsp.h"
 
 #include <zip.h>
 
@@ -212,6 +213,7 @@ void bspSeeds(const fs::path& cache, const fs::path& out) {
         const std::vector<uint8_t> bytes = q3::readFileBytes(real[i].path);
         writeSeed(out / "bsp", seedName(loose, real[i].path), bytes);
         writeSeed(out / "sh_runtime", seedName(loose, real[i].path), bytes);
+        writeSeed(out / "lightcache", seedName(loose, real[i].path), bytes);
     }
 }
 
@@ -298,6 +300,30 @@ void prtSeeds(const fs::path& out) {
     writeSeed(out / "prt", "no-portals.prt", "PRT1\n1\n0\n0\n");
 }
 
+// The light cache tests' pillar room: as written there, and with two clusters, a visibility lump,
+// a sun and a small SH grid.
+void lightCacheSeeds(const fs::path& out) {
+    namespace t = q3::sh::test;
+    t::TestMap room = t::roomWithPillar();
+    writeSeed(out / "lightcache", "own-pillar-room.bsp", t::buildTestBsp(room));
+    room.numClusters = 2;
+    room.cluster = [](const float*, const float maxs[3]) { return maxs[0] <= 0 ? 0 : 1; };
+    room.visible = [](int32_t from, int32_t to) { return from == to; };
+    q3::sh::WorldLight sun;
+    sun.type = q3::sh::WorldLightType::Sun;
+    sun.falloff = q3::sh::WorldLightFalloff::Parallel;
+    sun.direction = {0, 0.6f, 0.8f};
+    sun.intensity = {1, 1, 1};
+    room.lights.push_back(sun);
+    room.boxes[1].shader = t::kShaderSky;
+    const std::vector<uint8_t> gridLump = q3::bsp::test::makeShGridLump(2, 2, 2);
+    q3::sh::GridSH grid;
+    std::string error;
+    if (!q3::sh::decodeGridLump(gridLump.data(), gridLump.size(), grid, error)) throw std::runtime_error(error);
+    room.grid = grid;
+    writeSeed(out / "lightcache", "own-pillar-room-vis-sun-grid.bsp", t::buildTestBsp(room));
+}
+
 void worldLightSeeds(const fs::path& out) {
     writeSeed(out / "world_lights", "every-model.lump", q3::sh::encodeWorldLights(q3::sh::test::sampleWorldLights()));
     writeSeed(out / "world_lights", "empty.lump", q3::sh::encodeWorldLights({}));
@@ -322,6 +348,7 @@ int main(int argc, char** argv) {
         pk3Seeds(cache, out, scratch);
         prtSeeds(out);
         worldLightSeeds(out);
+        lightCacheSeeds(out);
         fs::remove_all(scratch);
         for (const q3::fuzz::FuzzEntry& entry : q3::fuzz::fuzzEntries()) {
             size_t count = 0;

@@ -6,6 +6,7 @@
 #include "file_io.h"
 #include "test_data.h"
 #include "../sh/world_lights_samples.h"
+#include "light_cache_test_bsp.h"
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,21 @@ TEST(FuzzEntries, WorldLightsEntryTakesValidAndBrokenLumps) {
     run("world_lights", lump, context);
     lump.resize(40);
     run("world_lights", lump, context);
+}
+
+// The light cache entry loads and queries the pillar room, and refuses a copy with a broken tree
+// or a cut-off file cleanly.
+TEST(FuzzEntries, LightCacheEntryTakesTheTestRoomAndBrokenCopies) {
+    const FuzzContext context{q3::test::tempDir()};
+    q3::sh::test::TestMap room = q3::sh::test::roomWithPillar();
+    room.lights.push_back(q3::sh::test::testPointLight(100, 100, 100, 5000));
+    run("lightcache", q3::sh::test::buildTestBsp(room), context);
+    q3::sh::test::TestLumps lumps = q3::sh::test::testLumps(room);
+    lumps.lumps[3][4] = 0;  // node 0's front child is node 0 itself
+    run("lightcache", q3::sh::test::assembleTestBsp(lumps), context);
+    std::vector<uint8_t> cut = q3::sh::test::buildTestBsp(room);
+    cut.resize(cut.size() / 2);
+    run("lightcache", cut, context);
 }
 
 TEST(FuzzEntries, JsonPackReplacesOneFileAndRestoresIt) {
