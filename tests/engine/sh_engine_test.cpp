@@ -71,6 +71,25 @@ TEST(ShGridInEngines, ShAndBspxOutputsLoadAndKeepLegacyLumps) {
     expectLoads(bspxCopy, "ioq3,dp", engineDir / "logs");
 }
 
+// The light cache's inputs: -shnoworldlights with -shbspx writes a version 46 file whose BSPX
+// trailer holds LIGHTGRID_SH and WORLDLIGHTS; the legacy lumps stay those of the plain run and
+// both engines load it strictly.
+TEST(ShGridInEngines, WorldLightsLumpLoadsInBothEngines) {
+    const fs::path dir = test::tempDir();
+    const bsp::Bsp plain = bsp::readBsp(relightOacmpMap(dir / "plain", kMap, {"-fast"}));
+    const fs::path path = relightOacmpMap(dir / "lights", kMap, {"-fast", "-shbspx", "-shnoworldlights"});
+    const bsp::Bsp lights = bsp::readBsp(path);
+    EXPECT_EQ(lights.version, bsp::kVersionQ3);
+    ASSERT_NE(lights.findBspx("LIGHTGRID_SH"), nullptr);
+    const bsp::BspxLump* records = lights.findBspx("WORLDLIGHTS");
+    ASSERT_NE(records, nullptr);
+    EXPECT_GT(records->data.size(), 16u + 10u * 96u);
+    expectSameLegacyLumps(plain, lights, "shnoworldlights");
+
+    const fs::path engineDir = dir / "engine";
+    expectLoads(copyForEngines(path, engineDir, kMap + "_worldlights"), "ioq3,dp", engineDir / "logs");
+}
+
 // DarkPlaces' getlight() at the player model, summed over the channels; -1 when not reported.
 double modelGridLight(const std::string& output) {
     const std::vector<double> sums = darkPlacesGridSums(output, "model at ");
