@@ -324,7 +324,10 @@ void fixFace(DrawSurface& ds, const std::vector<int>& edgeOf, const EdgeLines& l
     if (first == 0) ++counts.natural;
     else if (first == count) ++counts.cantOrder;
     else ++counts.rotated;
-    if (first == count) first = 0;
+    // q3map2 2.5.17n moves the start of every face it does not keep in order (rotated or not
+    // orderable) by one vertex, whichever vertex its search found (measured on the bsp-samples and
+    // oacmpdm5: 56 of 57 vertex patterns).
+    if (first != 0) first = 1;
     ds.verts.clear();
     ds.tjunctionVerts.clear();
     for (int j = 0; j < count; ++j) {

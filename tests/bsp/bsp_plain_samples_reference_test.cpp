@@ -20,8 +20,9 @@ TEST_P(PlainSampleReference, EveryLumpButTheEntitiesEqualsQ3map2s) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, PlainSampleReference,
-                         ::testing::Values("box_room", "detail_hint", "keep_lights", "misc_models", "patch_room",
-                                           "pillar_lights", "skybox"));
+                         ::testing::Values("areaportal", "box_room", "detail_hint", "entity_ambient", "keep_lights",
+                                           "leaking_room", "misc_models", "patch_room",
+                                           "pillar_lights", "skybox", "two_rooms_door", "water_fog"));
 
 }  // namespace
 }  // namespace q3::bspstage
