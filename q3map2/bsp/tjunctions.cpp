@@ -42,7 +42,7 @@ struct PendingEdge {  // a non-axial edge, registered after all axial ones
 };
 
 // q3map2's VectorNormalize: divides in double, so that an axial difference gives exactly +-1 (a
-// float reciprocal gives 0.99999994 for 264, which the axial test rejects); returns the length.
+// float reciprocal gives 0.99999994 for 41, which the axial test rejects); returns the length.
 float normalizeExact(Vec3& v) {
     const double x = v.x, y = v.y, z = v.z;
     const double len = std::sqrt(x * x + y * y + z * z);
