@@ -17,9 +17,9 @@ namespace q3::bspstage {
 namespace {
 
 constexpr float kLinePositionEpsilon = 0.25f;
-constexpr float kPointOnLineEpsilon = 0.25f;
+constexpr double kPointOnLineEpsilon = 0.25;  // compared in double, as q3map2's float_equal_epsilon
 constexpr float kDegenerateEpsilon = 0.1f;
-constexpr float kInsertEpsilon = 0.1f;  // ON_EPSILON
+constexpr double kInsertEpsilon = 0.1;  // ON_EPSILON, a double: `start + ON_EPSILON` is not rounded to float
 constexpr int kMaxSurfaceVerts = 256;
 
 struct EdgePoint {
@@ -41,17 +41,37 @@ struct PendingEdge {  // a non-axial edge, registered after all axial ones
     int vert;  // the face vertex starting the edge; -1 for a patch border
 };
 
-// Two unit vectors perpendicular to `forward` and to each other (q3map2 MakeNormalVectors).
+// q3map2's VectorNormalize: divides in double, so that an axial difference gives exactly +-1 (a
+// float reciprocal gives 0.99999994 for 41, which the axial test rejects); returns the length.
+float normalizeExact(Vec3& v) {
+    const double x = v.x, y = v.y, z = v.z;
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if (len == 0) {
+        v = {};
+        return 0;
+    }
+    v = {float(x / len), float(y / len), float(z / len)};
+    return float(len);
+}
+
+// Two unit vectors perpendicular to `forward` and to each other (2.5.17n MakeNormalVectors: the
+// axis of forward's smallest component crossed with it, then their cross). For a horizontal line
+// the planes are the vertical one through it and the horizontal one, so a point 0.286 beside it
+// is off the line, where the older rotate-and-negate planes (tilted) let it through.
 void normalVectors(const Vec3& forward, Vec3& right, Vec3& up) {
-    // This rotation and negation never gives a vector collinear with the original.
-    right = {forward.z, -forward.x, forward.y};
-    right -= forward * dot(right, forward);
-    normalizeInPlace(right);
+    int smallest = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::fabs(forward[k]) < std::fabs(forward[smallest])) smallest = k;
+    Vec3 axis;
+    axis[smallest] = 1;
+    right = cross(axis, forward);
+    normalizeExact(right);
     up = cross(right, forward);
 }
 
 // Strictly within, as q3map2's float_equal_epsilon: a point exactly 0.25 off a line is not on it.
 bool nearlyEqual(float a, float b, float epsilon) { return std::fabs(b - a) < epsilon; }
+bool nearlyEqual(double a, double b, double epsilon) { return std::fabs(b - a) < epsilon; }
 
 // The edge lines, with an index that finds the first line (in creation order) holding both ends of
 // an edge without testing every line: lines along a world axis are filed under the unit cell of
@@ -64,14 +84,12 @@ public:
     // The line of the edge v1-v2 (created when no line holds both ends); -1 for a degenerate edge.
     int add(const Vec3& v1, const Vec3& v2, TJunctionCounts& counts) {
         Vec3 dir = v2 - v1;
-        if (normalizeInPlace(dir) < 0.1f) {
+        if (normalizeExact(dir) < 0.1f) {
             ++counts.degenerateEdges;
             return -1;
         }
         // Faces sharing an edge register it twice: its line is the one found the first time (lines
-        // never change and later ones come after it), and its ends are on that line already --
-        // unless that line does not hold its own ends (a degenerate pair of normals, which q3map2
-        // makes for directions like (1, 1, -1)): then the edge is looked for again.
+        // never change and later ones come after it), and its ends are on that line already.
         const EdgeKey key = edgeKey(v1, v2);
         if (auto known = known_.find(key); known != known_.end() && holds(lines[size_t(known->second)], v1, v2))
             return known->second;
@@ -140,10 +158,12 @@ private:
     }
 
     bool holds(const EdgeLine& e, const Vec3& v1, const Vec3& v2) const {
-        return nearlyEqual(dot(v1, e.normal1), e.dist1, kPointOnLineEpsilon) &&
-               nearlyEqual(dot(v1, e.normal2), e.dist2, kPointOnLineEpsilon) &&
-               nearlyEqual(dot(v2, e.normal1), e.dist1, kPointOnLineEpsilon) &&
-               nearlyEqual(dot(v2, e.normal2), e.dist2, kPointOnLineEpsilon);
+        // Float dot products, their difference from the float distance taken in double.
+        auto on = [](const Vec3& v, const Vec3& n, float d) {
+            return nearlyEqual(double(dot(v, n)), double(d), kPointOnLineEpsilon);
+        };
+        return on(v1, e.normal1, e.dist1) && on(v1, e.normal2, e.dist2) && on(v2, e.normal1, e.dist1) &&
+               on(v2, e.normal2, e.dist2);
     }
 
     // The smallest index of a line holding both ends, or -1.
@@ -158,7 +178,7 @@ private:
             std::array<bool, kPlaneBlock> near{};
             for (size_t i = block; i < end; ++i)
                 near[i - block] = std::fabs(v1.x * planeX_[i] + v1.y * planeY_[i] + v1.z * planeZ_[i] - planeDist_[i]) <
-                                  kPointOnLineEpsilon + kPlaneFilterSlack;
+                                  float(kPointOnLineEpsilon) + kPlaneFilterSlack;
             for (size_t word = 0; word < kPlaneBlock && best == std::numeric_limits<int>::max(); word += 8) {
                 uint64_t any = 0;
                 std::memcpy(&any, near.data() + word, sizeof any);
@@ -212,7 +232,7 @@ bool isAxial(const Vec3& dir) { return std::fabs(dir.x + dir.y + dir.z) == 1.0f;
 bool collinear(const Vec3& v1, const Vec3& v2, const Vec3& v3) {
     const Vec3 mid = v2 - v1;
     Vec3 dir = v3 - v1;
-    if (normalizeInPlace(dir) == 0) return false;
+    if (normalizeExact(dir) == 0) return false;
     return length(mid - dir * dot(mid, dir)) < 0.1f;
 }
 
@@ -228,7 +248,7 @@ void registerEdges(std::vector<DrawSurface>& surfaces, EdgeLines& lines, EdgeInd
                    std::vector<PendingEdge>& pending, TJunctionCounts& counts) {
     auto addEdge = [&](const Vec3& v1, const Vec3& v2, size_t surface, int vert) {
         Vec3 dir = v2 - v1;
-        const float d = normalizeInPlace(dir);
+        const float d = normalizeExact(dir);
         if (d < 0.1f) {
             ++counts.degenerateEdges;
             return -1;
@@ -245,8 +265,13 @@ void registerEdges(std::vector<DrawSurface>& surfaces, EdgeLines& lines, EdgeInd
         if (ds.kind == SurfaceKind::Face) {
             const int n = int(ds.verts.size());
             edgeOf[s].assign(size_t(n), -1);
-            for (int i = 0; i < n; ++i)
+            // The closing edge (last vertex to first) comes first, as 2.5.17n's AddSurfaceEdges walks
+            // (prev, next) pairs from (end - 1, begin): which edge of a face creates a line decides
+            // which later edges join it (oacmpdm5: 1268 axial lines in vertex order, 1290 so).
+            for (int k = 0; k < n; ++k) {
+                const int i = (k + n - 1) % n;
                 edgeOf[s][size_t(i)] = addEdge(xyzOf(ds.verts[size_t(i)]), xyzOf(ds.verts[size_t((i + 1) % n)]), s, i);
+            }
         } else if (ds.kind == SurfaceKind::Patch) {
             // Straight border spans of a patch, so that faces meeting a patch get its vertices.
             auto at = [&](int x, int y) { return xyzOf(ds.verts[size_t(y * ds.patchWidth + x)]); };
@@ -325,8 +350,8 @@ void fixFace(DrawSurface& ds, const std::vector<int>& edgeOf, const EdgeLines& l
     else if (first == count) ++counts.cantOrder;
     else ++counts.rotated;
     // q3map2 2.5.17n moves the start of every face it does not keep in order (rotated or not
-    // orderable) by one vertex, whichever vertex its search found (measured on the bsp-samples and
-    // oacmpdm5: 56 of 57 vertex patterns).
+    // orderable) by one vertex, whichever vertex its search found: it writes verts + 1 .. end, then
+    // verts[0].
     if (first != 0) first = 1;
     ds.verts.clear();
     ds.tjunctionVerts.clear();
@@ -354,7 +379,7 @@ bool fixBrokenFace(DrawSurface& ds) {
         bsp::DrawVert avg{};
         for (int k = 0; k < 3; ++k) avg.xyz[k] = weldComponent(dv1.xyz[k], dv2.xyz[k]);
         Vec3 normal = Vec3::fromArray(dv1.normal) + Vec3::fromArray(dv2.normal);
-        normalizeInPlace(normal);
+        normalizeExact(normal);
         normal.toArray(avg.normal);
         for (int k = 0; k < 2; ++k) {
             avg.st[k] = (dv1.st[k] + dv2.st[k]) * 0.5f;
@@ -384,10 +409,11 @@ TJunctionCounts fixTJunctions(std::vector<DrawSurface>& surfaces) {
     std::vector<PendingEdge> pending;
     registerEdges(surfaces, lines, edgeOf, pending, counts);
     counts.axialLines = int(lines.lines.size());
-    // Non-axial edges by length (ties keep their order, for a result that does not depend on the
-    // sort implementation).
-    std::stable_sort(pending.begin(), pending.end(),
-                     [](const PendingEdge& a, const PendingEdge& b) { return a.length < b.length; });
+    // Non-axial edges by length, shortest first, with std::sort as q3map2 (std::ranges::sort): its
+    // ties fall as libstdc++'s introsort leaves them, which is deterministic, and an edge of equal
+    // length registered earlier decides the line's origin and direction.
+    std::sort(pending.begin(), pending.end(),
+              [](const PendingEdge& a, const PendingEdge& b) { return a.length < b.length; });
     for (const PendingEdge& e : pending) {
         const int line = lines.add(e.v1, e.v2, counts);
         if (e.vert >= 0) edgeOf[e.surface][size_t(e.vert)] = line;

@@ -251,6 +251,38 @@ TEST(TJunctions, AFaceTakesTheVertexItsNeighbourHasOnItsEdge) {
     EXPECT_EQ(surfaces[2].verts.size(), 4u);
 }
 
+// The edge line counts below are q3map2 2.5.17n's (-v) on maps cut down from oacmpdm5 to the
+// brushes that hold these faces.
+TEST(TJunctions, AFaceRegistersItsClosingEdgeFirst) {
+    // A 0.125-thick side of a jump pad: its closing edge, along y, creates the line that then holds
+    // both short vertical edges and the other long one (the first edge, vertical, made two lines).
+    std::vector<DrawSurface> surfaces;
+    surfaces.push_back(faceFrom({{-696, -400, 0.25f}, {-696, -400, 0.125f}, {-696, -344, 0.125f}, {-696, -344, 0.25f}}));
+    surfaces[0].kind = SurfaceKind::Face;
+    EXPECT_EQ(fixTJunctions(surfaces).axialLines, 1);
+}
+
+TEST(TJunctions, AxialEdgesNormaliseExactly) {
+    // 41 units: a float reciprocal makes the direction 0.99999994 long, which sent these edges to
+    // the non-axial pass.
+    std::vector<DrawSurface> surfaces;
+    surfaces.push_back(faceFrom({{0, 0, 0}, {0, 41, 0}, {41, 41, 0}, {41, 0, 0}}));
+    surfaces[0].kind = SurfaceKind::Face;
+    const TJunctionCounts counts = fixTJunctions(surfaces);
+    EXPECT_EQ(counts.axialLines, 4);
+    EXPECT_EQ(counts.nonAxialLines, 0);
+}
+
+TEST(TJunctions, AHorizontalLineHasAVerticalPlane) {
+    // The far end of the second edge is 0.286 beside the first edge's line, within 0.25 of both
+    // tilted planes the older MakeNormalVectors made, but not of the vertical one: two lines.
+    std::vector<DrawSurface> surfaces;
+    surfaces.push_back(faceFrom({{-752, 168, 0}, {-744, 163.5f, 0}, {-752, 163.5f, 0}}));
+    surfaces.push_back(faceFrom({{-650.75f, 111.375f, 0}, {-736, 159, 0}, {-736, 111.375f, 0}}));
+    for (DrawSurface& ds : surfaces) ds.kind = SurfaceKind::Face;
+    EXPECT_EQ(fixTJunctions(surfaces).nonAxialLines, 2);
+}
+
 TEST(TJunctions, NearlyCoincidentVerticesAreWelded) {
     std::vector<DrawSurface> surfaces;
     surfaces.push_back(faceFrom({{0, 0, 0}, {0, 64, 0}, {0.05f, 64, 0}, {64, 64, 0}, {64, 0, 0}}));
