@@ -17,7 +17,7 @@ root=$(pwd)
 seconds=${1:-30}
 [ $# -gt 0 ] && shift
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2 ;; esac
-all_targets=(bsp sh_runtime map map_bsp shader json json_pack pk3 prt world_lights)
+all_targets=(bsp sh_runtime map map_bsp shader json json_pack pk3 prt world_lights lightcache)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
 for t in "${targets[@]}"; do
