@@ -1,11 +1,9 @@
 // The light cache's C interface: thin wrappers that catch everything so no exception crosses into C.
 #include "light_cache_c.h"
 
-#include <algorithm>
 #include <cstring>
-#include <new>
-#include <string>
 
+#include "c_api_support.h"
 #include "light_cache.h"
 #include "world_lights_glsl.h"
 
@@ -13,36 +11,12 @@ struct q3sh_lightcache {
     q3::sh::LightCache cache;
 };
 
-namespace {
-
-void writeError(char* error, size_t errorSize, const std::string& message) {
-    if (error == nullptr || errorSize == 0) return;
-    const size_t n = std::min(message.size(), errorSize - 1);
-    std::memcpy(error, message.data(), n);
-    error[n] = '\0';
-}
-
-}  // namespace
-
 extern "C" {
 
 q3sh_lightcache* q3sh_lightcache_load(const unsigned char* bsp, size_t size, char* error, size_t errorSize) {
-    try {
-        auto* handle = new q3sh_lightcache;
-        const std::string err = handle->cache.loadFromBsp(bsp, size);
-        if (!err.empty()) {
-            writeError(error, errorSize, err);
-            delete handle;
-            return nullptr;
-        }
-        writeError(error, errorSize, "");
-        return handle;
-    } catch (const std::bad_alloc&) {
-        writeError(error, errorSize, "out of memory loading the light cache");
-    } catch (...) {
-        writeError(error, errorSize, "unexpected failure loading the light cache");
-    }
-    return nullptr;
+    return q3::sh::capi::loadHandle<q3sh_lightcache>(
+        bsp, size, error, errorSize, "the light cache",
+        [](q3sh_lightcache& h, const unsigned char* b, size_t n) { return h.cache.loadFromBsp(b, n); });
 }
 
 void q3sh_lightcache_free(q3sh_lightcache* cache) { delete cache; }

@@ -1,11 +1,9 @@
 // The C interface: thin wrappers that catch everything so no exception crosses into C.
 #include "sh_grid_runtime_c.h"
 
-#include <algorithm>
 #include <cstring>
-#include <new>
-#include <string>
 
+#include "c_api_support.h"
 #include "sh_grid_runtime.h"
 
 struct q3sh_grid {
@@ -13,13 +11,6 @@ struct q3sh_grid {
 };
 
 namespace {
-
-void writeError(char* error, size_t errorSize, const std::string& message) {
-    if (error == nullptr || errorSize == 0) return;
-    const size_t n = std::min(message.size(), errorSize - 1);
-    std::memcpy(error, message.data(), n);
-    error[n] = '\0';
-}
 
 q3::sh::GridPointSH fromFloats(const float coeffs[27]) {
     q3::sh::GridPointSH p;
@@ -32,22 +23,9 @@ q3::sh::GridPointSH fromFloats(const float coeffs[27]) {
 extern "C" {
 
 q3sh_grid* q3sh_grid_load(const unsigned char* bsp, size_t size, char* error, size_t errorSize) {
-    try {
-        auto* grid = new q3sh_grid;
-        const std::string err = grid->runtime.loadFromBsp(bsp, size);
-        if (!err.empty()) {
-            writeError(error, errorSize, err);
-            delete grid;
-            return nullptr;
-        }
-        writeError(error, errorSize, "");
-        return grid;
-    } catch (const std::bad_alloc&) {
-        writeError(error, errorSize, "out of memory loading the light grid");
-    } catch (...) {
-        writeError(error, errorSize, "unexpected failure loading the light grid");
-    }
-    return nullptr;
+    return q3::sh::capi::loadHandle<q3sh_grid>(
+        bsp, size, error, errorSize, "the light grid",
+        [](q3sh_grid& h, const unsigned char* b, size_t n) { return h.runtime.loadFromBsp(b, n); });
 }
 
 void q3sh_grid_free(q3sh_grid* grid) { delete grid; }
