@@ -14,15 +14,6 @@
 
 namespace q3::sh {
 
-constexpr int kLumpShaders = 1;
-constexpr int kLumpPlanes = 2;
-constexpr int kLumpNodes = 3;
-constexpr int kLumpLeafs = 4;
-constexpr int kLumpLeafBrushes = 6;
-constexpr int kLumpBrushes = 8;
-constexpr int kLumpBrushSides = 9;
-constexpr int kLumpVisibility = 16;
-
 // Shader flags (Quake 3's surfaceflags.h values) that decide what blocks light.
 constexpr int32_t kContentsSolid = 0x1;
 constexpr int32_t kContentsTranslucent = 0x20000000;

@@ -10,8 +10,16 @@
 namespace q3::sh {
 
 constexpr int kLumpEntities = 0;
+constexpr int kLumpShaders = 1;
+constexpr int kLumpPlanes = 2;
+constexpr int kLumpNodes = 3;
+constexpr int kLumpLeafs = 4;
+constexpr int kLumpLeafBrushes = 6;
 constexpr int kLumpModels = 7;
+constexpr int kLumpBrushes = 8;
+constexpr int kLumpBrushSides = 9;
 constexpr int kLumpLightGrid = 15;
+constexpr int kLumpVisibility = 16;
 constexpr int kLumpLightGridSH = 18;
 constexpr int kMaxLumps = 19;
 
