@@ -11,14 +11,26 @@ namespace {
 constexpr int kMaxPictureSide = 8192;
 constexpr uint8_t kBackground = 32;
 
-// Linear irradiance to a display byte: soft exponential roll-off (keeps HDR values apart instead of
-// clipping them), then the sRGB-like 1/2.2 gamma of a monitor.
+}  // namespace
+
 uint8_t toDisplay(float irradiance, float exposure) {
     const double mapped = 1.0 - std::exp(-double(exposure) * std::max(0.0f, irradiance));
     return static_cast<uint8_t>(std::lround(255.0 * std::pow(mapped, 1.0 / 2.2)));
 }
 
-}  // namespace
+std::vector<DiscPixel> sphereDisc(int cell) {
+    std::vector<DiscPixel> out;
+    const float radius = 0.5f * float(cell) - 0.5f;
+    for (int py = 0; py < cell; ++py)
+        for (int px = 0; px < cell; ++px) {
+            const float u = (float(px) + 0.5f - 0.5f * float(cell)) / radius;
+            const float v = -(float(py) + 0.5f - 0.5f * float(cell)) / radius;
+            const float r2 = u * u + v * v;
+            if (r2 > 1.0f) continue;
+            out.push_back({px, py, {u, v, std::sqrt(1.0f - r2)}});
+        }
+    return out;
+}
 
 float middleHeight(const sh::GridSH& grid) {
     return grid.mins[2] + 0.5f * float(std::max(0, grid.bounds[2] - 1)) * grid.size[2];
@@ -34,7 +46,7 @@ Image renderProbeImage(const sh::GridRuntime& runtime, float z, int probePixels,
     image.rgba.assign(size_t(image.width) * size_t(image.height) * 4, kBackground);
     for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
 
-    const float radius = 0.5f * float(cell) - 0.5f;
+    const std::vector<DiscPixel> disc = sphereDisc(cell);
     for (int y = 0; y < by; ++y)
         for (int x = 0; x < bx; ++x) {
             const float position[3] = {grid.mins[0] + float(x) * grid.size[0],
@@ -42,19 +54,12 @@ Image renderProbeImage(const sh::GridRuntime& runtime, float z, int probePixels,
             const sh::GridPointSH probe = runtime.sample(position);
             const int left = x * cell;
             const int top = (by - 1 - y) * cell;  // north (+Y) up
-            for (int py = 0; py < cell; ++py)
-                for (int px = 0; px < cell; ++px) {
-                    // Sphere seen from above: image right = +X, image up = +Y, visible half faces +Z.
-                    const float u = (float(px) + 0.5f - 0.5f * float(cell)) / radius;
-                    const float v = -(float(py) + 0.5f - 0.5f * float(cell)) / radius;
-                    const float r2 = u * u + v * v;
-                    if (r2 > 1.0f) continue;
-                    const float normal[3] = {u, v, std::sqrt(1.0f - r2)};
-                    float rgb[3];
-                    sh::irradianceAt(probe, normal, rgb);
-                    uint8_t* texel = image.texel(left + px, top + py);
-                    for (int ch = 0; ch < 3; ++ch) texel[ch] = toDisplay(rgb[ch], exposure);
-                }
+            for (const DiscPixel& d : disc) {
+                float rgb[3];
+                sh::irradianceAt(probe, d.normal, rgb);
+                uint8_t* texel = image.texel(left + d.x, top + d.y);
+                for (int ch = 0; ch < 3; ++ch) texel[ch] = toDisplay(rgb[ch], exposure);
+            }
         }
     return image;
 }

@@ -62,6 +62,17 @@ struct ProbeReport {
 ProbeReport probeBsp(std::span<const uint8_t> bspImage, const float position[3], const std::string& name);
 std::vector<std::string> formatProbeReport(const ProbeReport& report);
 
+// A linear irradiance as a display byte: 1 - exp(-exposure * irradiance) (keeps HDR values apart
+// instead of clipping them), then a monitor's 1/2.2 gamma.
+uint8_t toDisplay(float irradiance, float exposure);
+// The pixels of a `cell`-pixel square that show a unit sphere seen from above (image right = +X,
+// image up = +Y, the visible half faces +Z), each with its sphere normal.
+struct DiscPixel {
+    int x, y;
+    float normal[3];
+};
+std::vector<DiscPixel> sphereDisc(int cell);
+
 // Top-down picture of the grid at height z: probe (x, y) is the square at column x, row by-1-y
 // (north up), holding a disc shaded by the irradiance for the sphere normal at each pixel.
 Image renderProbeImage(const sh::GridRuntime& grid, float z, int probePixels, float exposure);

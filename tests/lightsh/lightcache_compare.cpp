@@ -8,6 +8,7 @@
 #include "file_io.h"
 #include "light_contribution.h"
 #include "light_stage.h"
+#include "sh_tools.h"
 #include "world_lights_export.h"
 
 namespace q3::light::cachetest {
@@ -53,11 +54,6 @@ Vec3 irradiance(const sh::GridPointSH& probe, Vec3 n) {
     float rgb[3];
     sh::irradianceAt(probe, normal, rgb);
     return {rgb[0], rgb[1], rgb[2]};
-}
-
-uint8_t toDisplay(float value, float exposure) {
-    const double mapped = 1.0 - std::exp(-double(exposure) * std::max(0.0f, value));
-    return static_cast<uint8_t>(std::lround(255.0 * std::pow(mapped, 1.0 / 2.2)));
 }
 
 }  // namespace
@@ -171,25 +167,16 @@ Image renderPathPicture(const LitMap& map, const std::vector<Vec3>& positions, i
     image.rgba.assign(size_t(image.width) * size_t(image.height) * 4, kBackground);
     for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     // The disc's pixels and their sphere normals, the same for every cell.
+    const std::vector<shtools::DiscPixel> disc = shtools::sphereDisc(cell);
     std::vector<Vec3> normals;
-    std::vector<std::pair<int, int>> pixels;
-    const float radius = 0.5f * float(cell) - 0.5f;
-    for (int py = 0; py < cell; ++py)
-        for (int px = 0; px < cell; ++px) {
-            const float u = (float(px) + 0.5f - 0.5f * float(cell)) / radius;
-            const float v = -(float(py) + 0.5f - 0.5f * float(cell)) / radius;
-            const float r2 = u * u + v * v;
-            if (r2 > 1.0f) continue;
-            normals.push_back({u, v, std::sqrt(1.0f - r2)});
-            pixels.push_back({px, py});
-        }
+    for (const shtools::DiscPixel& d : disc) normals.push_back({d.normal[0], d.normal[1], d.normal[2]});
     for (size_t col = 0; col < positions.size(); ++col) {
         const LitMap::Irradiance e = map.irradianceAt(positions[col], normals);
         const std::vector<Vec3>* rows[3] = {&e.bruteForce, &e.shAlone, &e.withCache};
         for (int row = 0; row < 3; ++row)
-            for (size_t k = 0; k < pixels.size(); ++k) {
-                uint8_t* texel = image.texel(int(col) * cell + pixels[k].first, row * cell + pixels[k].second);
-                for (int ch = 0; ch < 3; ++ch) texel[ch] = toDisplay((*rows[row])[k][ch], exposure);
+            for (size_t k = 0; k < disc.size(); ++k) {
+                uint8_t* texel = image.texel(int(col) * cell + disc[k].x, row * cell + disc[k].y);
+                for (int ch = 0; ch < 3; ++ch) texel[ch] = shtools::toDisplay((*rows[row])[k][ch], exposure);
             }
     }
     return image;
