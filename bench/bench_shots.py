@@ -73,20 +73,24 @@ def magick(args):
     return subprocess.run(args, capture_output=True, text=True)
 
 
-def stable_psnr(ref, ref_again, ours, ours_again, work):
-    """PSNR of ours against the reference over the pixels each tool's BSP renders the same way twice:
-    animated shaders (tcMod scroll, animMap, rotating items) change between two renders of one BSP
-    and are left out. Returns (PSNR, share of pixels left out)."""
+def stable_psnr(refs, ours, work, grow=1):
+    """PSNR of ours against the reference over the pixels each tool's BSP renders the same way every
+    time: animated shaders (tcMod scroll, animMap, rotating items) change between renders of one BSP
+    and are left out. `refs`, `ours`: two or more renders of each BSP from one view, the first being
+    the one judged. Moving pixels are grown by `grow` pixels, since a few renders catch a moving
+    streak (star skies) only where it happened to be. Returns (PSNR, share of pixels left out)."""
     masks = []
-    for i, (a, b) in enumerate(((ref, ref_again), (ours, ours_again))):
-        masks.append(os.path.join(work, "mask%d.png" % i))
-        magick(["compare", "-fuzz", "0", a, b, "-compose", "src", "-highlight-color", "white", "-lowlight-color",
-                "black", masks[-1]])
+    for shots in (refs, ours):
+        for again in shots[1:]:
+            masks.append(os.path.join(work, "mask%d.png" % len(masks)))
+            magick(["compare", "-fuzz", "0", shots[0], again, "-compose", "src", "-highlight-color", "white",
+                    "-lowlight-color", "black", masks[-1]])
     mask = os.path.join(work, "mask.png")
-    magick(["convert", masks[0], masks[1], "-compose", "lighten", "-composite", mask])
+    magick(["convert"] + masks + ["-background", "black", "-compose", "lighten", "-flatten", "-colorspace", "gray"]
+           + (["-morphology", "Dilate", "Square:%d" % grow] if grow > 0 else []) + [mask])
     moving = float(magick(["convert", mask, "-format", "%[fx:mean]", "info:"]).stdout or 0)
     merged = os.path.join(work, "merged.png")
-    magick(["convert", ours, ref, mask, "-composite", merged])  # moving pixels taken from the reference
-    text = magick(["compare", "-metric", "MSE", ref, merged, "null:"]).stderr
+    magick(["convert", ours[0], refs[0], mask, "-composite", merged])  # moving pixels taken from the reference
+    text = magick(["compare", "-metric", "MSE", refs[0], merged, "null:"]).stderr
     mse = float(text[text.find("(") + 1:text.find(")")]) if "(" in text else 0.0
     return (10 * math.log10((1 - moving) / mse) if mse > 0 else float("inf")), moving
