@@ -254,8 +254,8 @@ cli::OptionTable<O> buildLightTable() {
            "light times texture colour); implies -sh",
            kImplemented, [](O& o, Values) { o.sh = o.shGather = true; });
     flag({"-shexact"}, &O::shExact,
-         "Light every SH probe with every light instead of lighting the lights far from a block at its corner "
-         "probes and interpolating between them where the corners agree",
+         "Light and trace every light at every SH probe instead of first at a block's corner probes, then "
+         "interpolating far lights between them and sparing near ones their rays where the corners agree",
          kImplemented);
     integer({"-shgathersamples"}, &O::shGatherSamples, Range::between(16, 65536),
             "Rays per SH probe of -shgather (a fixed spherical Fibonacci set)", kImplemented);

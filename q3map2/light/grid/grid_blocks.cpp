@@ -277,27 +277,45 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
         const size_t cornerRays = s.rays.size();
         for (size_t k = 0; k < nl; ++k) {
             if (!includes(lights[candidates[k]])) continue;
-            // Far lights change little over the block unless their rays do: shared when every
-            // corner's ray is open, or every one blocked, or no corner gets any light although
-            // every corner may see the light (it is too faint or behind its emitter everywhere).
-            const bool far = sharing->far[k] != 0;
-            bool open = far, blocked = far, dark = far;
-            for (size_t p = 0; p < np && (open || blocked || dark); ++p) {
+            // The corners agree on a light when no corner's cluster is kept from seeing it and the
+            // corners it reaches (with a ray each) are all open or all blocked; a corner it does not
+            // reach (too faint there, or behind its emitter) holds none of its light.
+            bool open = true, blocked = true, seen = true;
+            size_t reached = 0;
+            for (size_t p = 0; p < np && seen && (open || blocked); ++p) {
                 if (!corners[p]) continue;
-                const int32_t ray = s.rayOf[k * np + p];
+                if (!s.pending[k * np + p]) {
+                    seen = !pvsCulled(lights[candidates[k]], clusters[p], env);
+                    continue;
+                }
+                ++reached;
                 // A corner lit without a ray (too close to the light to trace) agrees with neither.
+                const int32_t ray = s.rayOf[k * np + p];
                 const Vec3 t = ray >= 0 ? s.transmission[size_t(ray)] : Vec3{0.5f, 0.5f, 0.5f};
                 open = open && t == Vec3{1, 1, 1};
                 blocked = blocked && t == Vec3{};
-                dark = dark && !s.pending[k * np + p] && !pvsCulled(lights[candidates[k]], clusters[p], env);
             }
-            if (open || blocked || dark) {
-                s.shared[k] = 1;
+            const bool far = sharing->far[k] != 0;
+            // A far light changes little over the block: the points between the corners take
+            // their light. A near one may light points between corners it does not reach (it may
+            // even lie inside the block), so only one reaching every corner counts: blocked at
+            // all of them, it leaves the points between dark; open at all, they light it
+            // themselves without shadow rays.
+            const bool agree = seen && (open || blocked) && (far || reached == cornerCount);
+            if (agree && (far || blocked)) {
+                s.shared[k] = far ? 1 : 0;
                 skipped += np - cornerCount;
                 continue;
             }
-            for (size_t p = 0; p < np; ++p)
-                if (!corners[p]) light(k, p);
+            for (size_t p = 0; p < np; ++p) {
+                if (corners[p]) continue;
+                const size_t before = s.rays.size();
+                light(k, p);
+                if (agree && s.rays.size() > before) {
+                    s.rays.resize(before);
+                    s.rayOf[k * np + p] = -1;
+                }
+            }
         }
         traceFrom(cornerRays);
     }

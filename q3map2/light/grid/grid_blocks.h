@@ -150,13 +150,15 @@ struct BlockSharing {
     BlockContributionFn visitShared;   // a shared light at a corner point, called instead of visit
 };
 
-// With `sharing` (and a scene), every light is first lit and traced at the corner points. A far
-// light whose corners agree is shared: every corner reached with a ray, all of them open or all
-// blocked, or no corner reached although every corner's cluster may see the light. The corners
-// report it to sharing->visitShared, and the points between them neither light nor trace it (the
-// caller interpolates the corners). Occluders smaller than the block can hide from the
-// corners; the SH grid measures what that costs against every pair lit (-shexact). Returns the
-// number of (light, point) pairs not lit.
+// With `sharing` (and a scene), every light is first lit and traced at the corner points. The
+// corners agree on a light when every corner's cluster may see it and the corners it reaches were
+// all reached with a ray, all of them open or all blocked (a corner it does not reach holds none of
+// its light). A far light the corners agree on is shared: the corners report it to
+// sharing->visitShared, and the points between them neither light nor trace it (the caller
+// interpolates the corners). A near light that reaches every corner, blocked at all of them, is
+// left out of the points between them; open at all, it lights them without shadow rays. Occluders smaller than
+// the block can hide from the corners; the SH grid measures what that costs against every pair
+// lit (-shexact). Returns the number of (light, point) pairs not lit.
 uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
                                  std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
                                  std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,

@@ -104,7 +104,7 @@ namespace {
 // Whether `light` is far enough from the box of a block's corners that its light varies smoothly
 // over the block: the gap between the box and the light (an area light's emitter sphere) is at
 // least kFarFromBlock times the box's largest extent. Suns are parallel light.
-constexpr float kFarFromBlock = 2.0f;
+constexpr float kFarFromBlock = 1.0f;
 bool farFromBlock(const Light& light, const Bounds& box) {
     if (light.type == LightType::Sun) return true;
     Vec3 centre = light.origin;
