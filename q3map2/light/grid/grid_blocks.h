@@ -156,9 +156,9 @@ struct BlockSharing {
 // its light). A far light the corners agree on is shared: the corners report it to
 // sharing->visitShared, and the points between them neither light nor trace it (the caller
 // interpolates the corners). A near light that reaches every corner, blocked at all of them, is
-// left out of the points between them; open at all, it lights them without shadow rays. Occluders smaller than
-// the block can hide from the corners; the SH grid measures what that costs against every pair
-// lit (-shexact). Returns the number of (light, point) pairs not lit.
+// left out of the points between them; open at all, it lights them without shadow rays.
+// Occluders smaller than the block can hide from the corners; the SH grid measures what that costs
+// against every pair lit (-shexact). Returns the number of (light, point) pairs not lit.
 uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
                                  std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
                                  std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
