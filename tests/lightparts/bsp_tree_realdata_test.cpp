@@ -91,18 +91,22 @@ TEST(BspTreeRealData, CompactWalksMatchThePlainOnes) {
             return rng() % 3 == 0 ? std::round(v) : v;
         };
         const std::vector<Vec3> box = nudgeOffsetsInBox({32, 32, 64}, 4);
-        int solid = 0;
+        int solid = 0, entries = 0;
         for (int i = 0; i < 20000; ++i) {
             const Vec3 p{coord(0), coord(1), coord(2)}, q{coord(0), coord(1), coord(2)};
             ASSERT_EQ(compact.leafForPoint(p), plain.leafForPoint(p)) << name << " " << i;
             ASSERT_EQ(compact.clusterForPointExt(p, 0.0f), plain.clusterForPointExt(p, 0.0f));
             ASSERT_EQ(compact.segmentCrossesSolid(p, q), plain.segmentCrossesSolid(p, q)) << name << " " << i;
+            const std::optional<Vec3> entry = compact.segmentSolidEntry(p, q);
+            ASSERT_EQ(entry, plain.segmentSolidEntry(p, q)) << name << " " << i;
+            entries += entry.has_value() && !(*entry == p) ? 1 : 0;
             if (i % 10 == 0 && compact.pointInSolid(p)) {
                 ++solid;
                 ASSERT_EQ(compact.nudgeOutOfSolid(p, box, -0.125f), plain.nudgeOutOfSolid(p, box, -0.125f));
             }
         }
         EXPECT_GT(solid, 50) << name;
+        EXPECT_GT(entries, 1000) << name;  // segments that start open and enter solid on the way
     }
 }
 

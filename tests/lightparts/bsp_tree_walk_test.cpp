@@ -120,6 +120,9 @@ TEST(BspTreeWalk, CompactWalksMatchThePlainOnes) {
             const Vec3 r{p.x, p.y, q.z};
             ASSERT_EQ(compact.segmentCrossesSolid(p, r), plain.segmentCrossesSolid(p, r));
             ASSERT_EQ(compact.segmentCrossesSolid(p, p), plain.segmentCrossesSolid(p, p));
+            // Where the walk enters solid: the same split points, bit for bit.
+            ASSERT_EQ(compact.segmentSolidEntry(p, q), plain.segmentSolidEntry(p, q)) << seed << " " << i;
+            ASSERT_EQ(compact.segmentSolidEntry(p, r), plain.segmentSolidEntry(p, r)) << seed << " " << i;
         }
     }
 }

@@ -108,12 +108,18 @@ bool BspTree::hullClearOfSolid(std::span<const Vec3> points) const {
 }
 
 bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
-    return segmentSolidEntry(from, to).has_value();
+    return referenceSegmentSolidEntry(from, to).has_value();
+}
+
+std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
+    if (bsp_.nodes.empty()) return std::nullopt;
+    if (compact_.empty() || !withinWalkRange(from, to)) return referenceSegmentSolidEntry(from, to);
+    return segmentTree_.entry(from, to);
 }
 
 // The reference walk, near side first, so that the first solid leaf it meets is where the segment
 // enters solid.
-std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
+std::optional<Vec3> BspTree::referenceSegmentSolidEntry(Vec3 from, Vec3 to) const {
     if (bsp_.nodes.empty()) return std::nullopt;
     struct Local {
         const BspTree& tree;

@@ -107,6 +107,7 @@ private:
     // (cycles, shared subtrees, very deep paths).
     int referenceLeafForPoint(Vec3 point) const;
     bool referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const;
+    std::optional<Vec3> referenceSegmentSolidEntry(Vec3 from, Vec3 to) const;
 
     void buildCompactTree();
     void buildLeafSolids();

@@ -86,10 +86,11 @@ SolidSegmentTree::SolidSegmentTree(const bsp::Bsp& bsp, std::span<const uint8_t>
             [&](int32_t child) { return childKind(child) == kHasSolid ? kSolidSubtree : kOpenSubtree; });
 }
 
-bool SolidSegmentTree::crosses(Vec3 from, Vec3 to) const {
+std::optional<Vec3> SolidSegmentTree::entry(Vec3 from, Vec3 to) const {
     // Far sides still to walk. A push happens at most once per node of the current path, so the
-    // validated depth bounds the stack. The answer is a plain "any stopping leaf", so the order in
-    // which sides are walked only decides how soon a hit ends the walk.
+    // validated depth bounds the stack. The near side of every split is walked first and keeps the
+    // part's start, so the first stopping leaf reached is where the segment enters one, and a whole
+    // stopping subtree (a mark) is entered at the start of the part that reaches it.
     // Plain floats, not Vec3: the array must not be zero-filled on every call.
     struct Pending {
         int32_t node;
@@ -102,8 +103,8 @@ bool SolidSegmentTree::crosses(Vec3 from, Vec3 to) const {
     WalkPoint s(start), e(end);
     while (true) {
         if (node < 0) {
-            if (node == kSolidSubtree) return true;
-            if (top == 0) return false;
+            if (node == kSolidSubtree) return start;
+            if (top == 0) return std::nullopt;
             const Pending& next = stack[--top];
             node = next.node;
             start = Vec3::fromArray(next.start);

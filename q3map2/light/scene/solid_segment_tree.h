@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -92,7 +93,10 @@ public:
     bool usable() const { return usable_; }
     // Whether the walk of the segment reaches a stopping leaf. Requires usable() and
     // withinWalkRange (callers take the plain walk otherwise).
-    bool crosses(Vec3 from, Vec3 to) const;
+    bool crosses(Vec3 from, Vec3 to) const { return entry(from, to).has_value(); }
+    // Where the walk (near side first) first reaches a stopping leaf: the start of the segment's part
+    // in it, the point the plain recursive walk returns. Same requirements as crosses().
+    std::optional<Vec3> entry(Vec3 from, Vec3 to) const;
     // True when no segment between two points of the convex hull of `points` can reach a stopping
     // leaf as crosses() walks it (margins cover the rounding of the walk's split points), so a
     // batch of rays inside that hull needs no walk of its own. False when some may, when the tree
