@@ -23,7 +23,11 @@ conformance_note() {
 }
 trap conformance_note EXIT
 # ccache keys on relative paths, so a fresh clone in another folder reuses earlier compilations.
+# Objects with debug information (the sanitizer build) would still key on the build folder's
+# absolute path, so every fresh clone rebuilt them; leaving it out lets them be reused too (their
+# debug information then names the build folder of the first compile, which only a debugger sees).
 export CCACHE_BASEDIR="$PWD"
+export CCACHE_NOHASHDIR=1
 
 tools/install-deps.sh build test engines
 tools/fetch-openarena.sh >/dev/null
