@@ -96,19 +96,11 @@ void BspTree::buildCompactTree() {
     compact_ = compactCopy(bsp_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
 }
 
-bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const {
-    if (bsp_.nodes.empty()) return false;
-    if (compact_.empty() || !withinWalkRange(from, to)) return referenceSegmentCrossesSolid(from, to);
-    return segmentTree_.crosses(from, to);
-}
+bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const { return segmentSolidEntry(from, to).has_value(); }
 
 bool BspTree::hullClearOfSolid(std::span<const Vec3> points) const {
     if (bsp_.nodes.empty()) return true;
     return segmentTree_.hullClear(points);
-}
-
-bool BspTree::referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const {
-    return referenceSegmentSolidEntry(from, to).has_value();
 }
 
 std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {

@@ -106,7 +106,6 @@ private:
     // The plain walks over bsp::Node / bsp::Plane, for trees that fail the construction-time check
     // (cycles, shared subtrees, very deep paths).
     int referenceLeafForPoint(Vec3 point) const;
-    bool referenceSegmentCrossesSolid(Vec3 from, Vec3 to) const;
     std::optional<Vec3> referenceSegmentSolidEntry(Vec3 from, Vec3 to) const;
 
     void buildCompactTree();
