@@ -18,53 +18,75 @@ Vec3d operator+(Vec3d a, Vec3d b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 Vec3d operator*(Vec3d a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 double dot(Vec3d a, Vec3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 Vec3d cross(Vec3d a, Vec3d b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double component(Vec3d v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
-
-// Solid angle of the spherical triangle of unit vectors (Van Oosterom and Strackee 1983), signed
-// by the winding.
-double signedTriangleSolidAngle(Vec3d a, Vec3d b, Vec3d c) {
-    const double numerator = dot(a, cross(b, c));
-    const double denominator = 1.0 + dot(a, b) + dot(b, c) + dot(c, a);
-    return 2.0 * std::atan2(numerator, denominator);
-}
 
 }  // namespace
 
 PolygonMoments sphericalPolygonMoments(std::span<const Vec3d> corners) {
     PolygonMoments m;
-    thread_local std::vector<Vec3d> v;  // called per light and probe: no allocation once warm
-    v.clear();
+    // Called per light and probe: the unit corners live on the stack for the usual emitters.
+    constexpr size_t kOnStack = 32;
+    Vec3d onStack[kOnStack];
+    thread_local std::vector<Vec3d> onHeap;
+    Vec3d* v = onStack;
+    if (corners.size() > kOnStack) {
+        onHeap.resize(corners.size());
+        v = onHeap.data();
+    }
+    size_t n = 0;
     for (const Vec3d& c : corners) {
         const Vec3d unit = normalized(c);
-        if (dot(unit, unit) > 0) v.push_back(unit);
+        if (dot(unit, unit) > 0) v[n++] = unit;
     }
-    const size_t n = v.size();
     if (n < 3) return m;
-    double omega = 0;
-    for (size_t k = 1; k + 1 < n; ++k) omega += signedTriangleSolidAngle(v[0], v[k], v[k + 1]);
+    // Solid angle of the fan from the first corner: each triangle (a, b, c) spans twice the
+    // argument of 1 + a.b + b.c + c.a + i a.(b x c) (Van Oosterom and Strackee 1983), signed by
+    // the winding. The arguments add up as the complex numbers multiply, so one atan2 gives the
+    // sum; it stays within (-pi, pi) because a polygon seen from off its plane covers under 2 pi.
+    double re = 1, im = 0;
+    for (size_t k = 1; k + 1 < n; ++k) {
+        const Vec3d &a = v[0], &b = v[k], &c = v[k + 1];
+        const double numerator = dot(a, cross(b, c));
+        const double denominator = 1.0 + dot(a, b) + dot(b, c) + dot(c, a);
+        const double r = re * denominator - im * numerator;
+        im = re * numerator + im * denominator;
+        re = r;
+        const double size = std::max(std::abs(re), std::abs(im));
+        if (size > 1e100 || (size < 1e-100 && size > 0)) {  // each factor is at most 4: rarely taken
+            re /= size;
+            im /= size;
+        }
+    }
+    const double omega = 2.0 * std::atan2(im, re);
     // Windings that run one way have positive signed area; v_k x v_k+1 then points into the cone.
     const double inward = omega >= 0 ? 1.0 : -1.0;
     m.solidAngle = std::abs(omega);
     if (!(m.solidAngle > 0)) return PolygonMoments{};
     Vec3d first;
-    double edgeTerms[3][3] = {};
+    double xx = 0, yy = 0, zz = 0, xy = 0, yz = 0, xz = 0;  // the symmetric edge terms
     for (size_t k = 0; k < n; ++k) {
-        const Vec3d a = v[k], b = v[(k + 1) % n];
+        const Vec3d a = v[k], b = v[k + 1 == n ? 0 : k + 1];
         const Vec3d axis = cross(a, b);
         const double sine = std::sqrt(dot(axis, axis));
         if (!(sine > 0)) continue;
         const double cosine = std::clamp(dot(a, b), -1.0, 1.0);
         const double angle = std::atan2(sine, cosine);
-        const Vec3d outward = axis * (-inward / sine);
+        const double inverseSine = 1.0 / sine;
+        const Vec3d outward = axis * (-inward * inverseSine);
         first = first - outward * (0.5 * angle);
-        const Vec3d u = normalized(b - a * cosine);
-        const Vec3d arc = a * sine + u * (1.0 - cosine);
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                edgeTerms[i][j] += 0.5 * (component(outward, i) * component(arc, j) +
-                                          component(outward, j) * component(arc, i));
+        // u: unit, in the edge's plane, orthogonal to a towards b (|b - a cos| = sin for unit a, b).
+        const Vec3d u = (b - a * cosine) * inverseSine;
+        // 1 - cos without the cancellation of small angles.
+        const double versine = cosine > 0 ? sine * sine / (1.0 + cosine) : 1.0 - cosine;
+        const Vec3d arc = a * sine + u * versine;
+        xx += outward.x * arc.x;
+        yy += outward.y * arc.y;
+        zz += outward.z * arc.z;
+        xy += 0.5 * (outward.x * arc.y + outward.y * arc.x);
+        yz += 0.5 * (outward.y * arc.z + outward.z * arc.y);
+        xz += 0.5 * (outward.x * arc.z + outward.z * arc.x);
     }
     m.first = first;
+    const double edgeTerms[3][3] = {{xx, xy, xz}, {xy, yy, yz}, {xz, yz, zz}};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) m.second[i][j] = ((i == j ? m.solidAngle : 0.0) - edgeTerms[i][j]) / 3.0;
     return m;

@@ -319,15 +319,19 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
         }
         traceFrom(cornerRays);
     }
-    for (size_t p = 0; p < np; ++p)
-        for (size_t k = 0; k < nl; ++k) {
+    // Lights outer, points inner: the pending entries are read in the order they are stored, and
+    // each point still receives its lights in light order.
+    for (size_t k = 0; k < nl; ++k) {
+        const BlockContributionFn& report = share && s.shared[k] ? sharing->visitShared : visit;
+        for (size_t p = 0; p < np; ++p) {
             std::optional<LightContribution>& c = s.pending[k * np + p];
             if (!c) continue;
             const int32_t ray = s.rayOf[k * np + p];
             const Vec3* transmission = ray >= 0 ? &s.transmission[size_t(ray)] : nullptr;
             if (transmission) c->color *= *transmission;
-            (share && s.shared[k] ? sharing->visitShared : visit)(p, candidates[k], *c, transmission);
+            report(p, candidates[k], *c, transmission);
         }
+    }
     return skipped;
 }
 

@@ -134,7 +134,7 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
 // The lights `candidates` (indices into `lights`, in order; `clearOfSolid[k]`, when given, as in
 // BlockLights) at free points `origins` / `clusters`, with their shadow rays from all the points
 // traced as one batch (`coherent` and `axialRaysAlone` as TraceScene::traceBatch takes them; each
-// ray gets the same answer it gets alone). Then, point by point and for each point in light order,
+// ray gets the same answer it gets alone). Then, light by light (so each point in light order),
 // visit(point, lightIndex, contribution, transmission) for every light that reaches it:
 // contribution.color already multiplied by the ray's transmission (nullptr: no ray was traced).
 // `includes(light)` false leaves a light out; `envelopes` holds lightEnvelope of every light.
