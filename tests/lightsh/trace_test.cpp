@@ -13,6 +13,8 @@
 #include "../light/light_test_util.h"
 #include "grid_encode.h"
 #include "grid_sh.h"
+#include "grid_sh_corners.h"
+#include "progress.h"
 #include "light_context.h"
 #include "sh_grid_runtime.h"
 
@@ -266,92 +268,90 @@ TEST(ShTrace, BlockOfProbesEqualsEachProbeAlone) {
     EXPECT_NE(block[0].c[0][0], block[1].c[0][0]);  // the probes do not all see the same lights
 }
 
-// A 4 x 4 x 4 block of probes 32 32 64 apart with its corner weights.
-struct ProbeBlock {
-    std::vector<GridBlockPoint> points;
-    std::vector<size_t> free;
+// A 9 x 9 x 5 lattice 32 32 64 apart (corners every 4, 4 and 2 points: eight blocks) lit with
+// shared corners; `worst` gets each region's largest difference from every point lit alone,
+// relative to the point's own coefficient 0 (x < 128: the blocks next to the origin along x).
+struct SharedLatticeRun {
+    uint64_t pairs = 0;
+    double worstNear = 0, worstFar = 0;  // points with x < 128, x >= 128
+    std::vector<sh::SH9Color> light;
     std::vector<Vec3> origins;
-    BlockCornerWeights corners;
-    ProbeBlock() {
-        for (int z = 0; z < 4; ++z)
-            for (int y = 0; y < 4; ++y)
-                for (int x = 0; x < 4; ++x) {
-                    const size_t index = size_t(x + 4 * y + 16 * z);
-                    const Vec3 origin{32.0f * float(x), 32.0f * float(y), 64.0f * float(z)};
-                    points.push_back({index, origin});
-                    free.push_back(index);
-                    origins.push_back(origin);
-                }
-    }
 };
 
-TEST(ShTrace, BlockCornerWeightsAreTrilinear) {
-    ProbeBlock block;
-    ASSERT_TRUE(blockCornerWeights(block.points, block.free, {4, 4, 4}, block.corners));
-    int corners = 0;
-    for (size_t p = 0; p < block.free.size(); ++p) {
-        corners += block.corners.slotsOf[p] ? 1 : 0;
-        float sum = 0;
-        Vec3 at;
-        for (size_t slot = 0; slot < 8; ++slot) {
-            sum += block.corners.weights[p][slot];
-            at += block.origins[block.corners.slot[slot]] * block.corners.weights[p][slot];
-        }
-        EXPECT_NEAR(sum, 1.0f, 1e-6f);
-        EXPECT_NEAR(distance(at, block.origins[p]), 0.0f, 1e-3f) << p;  // the weights rebuild the point
+SharedLatticeRun traceSharedLattice(const std::vector<Light>& lights, const TraceScene& scene, int threads = 1) {
+    const GridLattice grid{{9, 9, 5}, {0, 0, 0}, {32, 32, 64}};
+    const size_t count = 9 * 9 * 5;
+    LightingEnv env;
+    env.scene = &scene;
+    const std::vector<float> envelopes = lightEnvelopes(lights, false);
+    const std::vector<uint8_t> leftOut(lights.size(), 0);
+    SharedLatticeRun run;
+    run.light.assign(count, sh::SH9Color{});
+    run.origins.assign(count, Vec3{});
+    std::vector<int> placed(count, 0), stored(count, 0);
+    const ShPointSink sink{[&](size_t i, Vec3 at) {
+                               ++placed[i];
+                               run.origins[i] = at;
+                               return std::optional<PlacedGridPoint>(PlacedGridPoint{at, -1, false});
+                           },
+                           [&](size_t i, sh::SH9Color& acc) {
+                               ++stored[i];
+                               run.light[i] = acc;
+                           }};
+    Progress progress(count, ProgressMode::Silent, [](std::string_view) {});
+    run.pairs = traceGridSHSharedCorners(grid, lights, leftOut, envelopes, env, 1.0f, nullptr, threads, progress, sink);
+    std::vector<uint32_t> all;
+    for (uint32_t i = 0; i < lights.size(); ++i) all.push_back(i);
+    for (size_t i = 0; i < count; ++i) {
+        EXPECT_EQ(placed[i], 1) << i;
+        EXPECT_EQ(stored[i], 1) << i;
+        sh::SH9Color alone;
+        addLightsToGridPointSH(alone, lights, all, run.origins[i], -1, env);
+        double& worst = run.origins[i].x < 128 ? run.worstNear : run.worstFar;
+        for (int k = 0; k < sh::kCoeffCount; ++k)
+            for (int ch = 0; ch < 3; ++ch)
+                worst = std::max(worst, std::fabs(run.light[i].c[k][ch] - alone.c[k][ch]) /
+                                            std::max(1e-9, std::fabs(alone.c[0][ch])));
     }
-    EXPECT_EQ(corners, 8);
-    EXPECT_EQ(block.corners.slot[0], 0u);
-    EXPECT_EQ(block.corners.slot[7], 63u);
-    // A block with a corner left out (in solid) shares nothing.
-    std::vector<size_t> missing(block.free.begin() + 1, block.free.end());
-    EXPECT_FALSE(blockCornerWeights(block.points, missing, {4, 4, 4}, block.corners));
-    // One probe thick along z: the upper slots repeat the lower ones with weight 0.
-    std::vector<GridBlockPoint> flat(block.points.begin(), block.points.begin() + 16);
-    std::vector<size_t> flatFree(block.free.begin(), block.free.begin() + 16);
-    ASSERT_TRUE(blockCornerWeights(flat, flatFree, {4, 4, 4}, block.corners));
-    EXPECT_EQ(block.corners.slot[4], block.corners.slot[0]);
-    EXPECT_EQ(block.corners.weights[5][4], 0.0f);
+    return run;
 }
 
-// Far lights are lit at the block's corners and interpolated between them; near lights, and far
-// ones whose corners disagree, are lit at every probe as without sharing.
-TEST(ShTrace, SharedBlockLightFollowsEveryProbeAlone) {
-    ProbeBlock block;
-    ASSERT_TRUE(blockCornerWeights(block.points, block.free, {4, 4, 4}, block.corners));
-    const std::vector<int> clusters(block.origins.size(), -1);
-    auto compare = [&](const std::vector<Light>& lights, const TraceScene& scene, double tolerance) {
-        LightingEnv env;
-        env.scene = &scene;
-        std::vector<uint32_t> all;
-        for (uint32_t i = 0; i < lights.size(); ++i) all.push_back(i);
-        const std::vector<float> envelopes = lightEnvelopes(lights, false);
-        std::vector<sh::SH9Color> shared(block.origins.size());
-        const uint64_t skipped =
-            addLightsToGridPointsSH(shared, lights, all, {}, envelopes, block.origins, clusters, env, &block.corners);
-        double worst = 0;
-        for (size_t p = 0; p < block.origins.size(); ++p) {
-            sh::SH9Color alone;
-            addLightsToGridPointSH(alone, lights, all, block.origins[p], -1, env);
-            for (int k = 0; k < sh::kCoeffCount; ++k)
-                for (int ch = 0; ch < 3; ++ch)
-                    worst = std::max(worst, std::fabs(shared[p].c[k][ch] - alone.c[k][ch]) /
-                                                std::max(1e-9, std::fabs(alone.c[0][ch])));
-        }
-        EXPECT_LE(worst, tolerance);
-        return skipped;
-    };
+// Far lights are lit at the shared corners and interpolated between them; near lights, and far
+// ones whose corners disagree, are lit at every point as without sharing.
+TEST(ShTrace, SharedCornersFollowEveryPointAlone) {
+    constexpr uint64_t kBetweenCorners = 9 * 9 * 5 - 3 * 3 * 3;
     const TraceScene empty{{}, {}};
-    // 2000 units away: shared, within 1 % of every probe's own light.
-    EXPECT_EQ(compare({pointLight({2000, 300, 500}, 4.0e7f, {1, 0.5f, 0.25f})}, empty, 0.01), 56u);
-    // Inside the block: lit at every probe, exactly.
-    EXPECT_EQ(compare({pointLight({40, 50, 100}, 3000, {1, 1, 1})}, empty, 1e-12), 0u);
-    // A wall between the light and half the corners: every probe lights it itself.
+    // 2000 units away: shared everywhere, within 1 % of every point's own light.
+    const SharedLatticeRun far = traceSharedLattice({pointLight({2000, 300, 500}, 4.0e7f, {1, 0.5f, 0.25f})}, empty);
+    EXPECT_EQ(far.pairs, kBetweenCorners);
+    EXPECT_LE(std::max(far.worstNear, far.worstFar), 0.01);
+    // Inside the lattice: near every block, lit at every point, exactly.
+    const SharedLatticeRun inside = traceSharedLattice({pointLight({100, 120, 100}, 3000, {1, 1, 1})}, empty);
+    EXPECT_EQ(inside.pairs, 0u);
+    EXPECT_EQ(std::max(inside.worstNear, inside.worstFar), 0.0);
+    // A wall at x = 48 hides the light from the corners at x = 0: the blocks next to them light
+    // every point themselves (exactly, black behind the wall); the others share.
     const TraceScene wall{{test::quad({48, -1000, -1000}, {0, 2000, 0}, {0, 0, 2000})}, {}};
-    EXPECT_EQ(compare({pointLight({2000, 50, 100}, 4.0e7f, {1, 1, 1})}, wall, 1e-12), 0u);
-    // The wall between the light and every probe: all blocked, shared, black.
+    const SharedLatticeRun split = traceSharedLattice({pointLight({2000, 50, 100}, 4.0e7f, {1, 1, 1})}, wall);
+    EXPECT_GT(split.pairs, 0u);
+    EXPECT_LT(split.pairs, kBetweenCorners);
+    EXPECT_EQ(split.worstNear, 0.0);
+    EXPECT_LE(split.worstFar, 0.01);
+    for (size_t i = 0; i < split.light.size(); ++i) {
+        if (split.origins[i].x < 48) {
+            EXPECT_EQ(split.light[i].c[0][0], 0.0) << i;
+        }
+    }
+    // The wall between the light and every point: blocked at every corner, shared, black.
     const TraceScene farWall{{test::quad({500, -1000, -1000}, {0, 2000, 0}, {0, 0, 2000})}, {}};
-    EXPECT_EQ(compare({pointLight({2000, 50, 100}, 4.0e7f, {1, 1, 1})}, farWall, 0.0), 56u);
+    const SharedLatticeRun dark = traceSharedLattice({pointLight({2000, 50, 100}, 4.0e7f, {1, 1, 1})}, farWall);
+    EXPECT_EQ(dark.pairs, kBetweenCorners);
+    EXPECT_EQ(std::max(dark.worstNear, dark.worstFar), 0.0);
+    // The thread count changes nothing.
+    const SharedLatticeRun twoThreads = traceSharedLattice({pointLight({2000, 50, 100}, 4.0e7f, {1, 1, 1})}, wall, 2);
+    for (size_t i = 0; i < split.light.size(); ++i)
+        for (int k = 0; k < sh::kCoeffCount; ++k)
+            for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(twoThreads.light[i].c[k][ch], split.light[i].c[k][ch]);
 }
 
 struct SkyScene {

@@ -166,10 +166,7 @@ std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* 
     return placements;
 }
 
-namespace {
-
-// Whether no segment from the box to the point enters structural solid.
-bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
+bool gridBoxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
     std::array<Vec3, 9> hull;
     for (size_t c = 0; c < 8; ++c)
         hull[c] = {(c & 1) ? box.maxs.x : box.mins.x, (c & 2) ? box.maxs.y : box.mins.y,
@@ -177,8 +174,6 @@ bool boxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point) {
     hull[8] = point;
     return tree.hullClearOfSolid(hull);
 }
-
-}  // namespace
 
 void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,
                      const ContributionSettings& settings, int blockEdge, int threads, Progress& progress,
@@ -199,7 +194,7 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
                 // Sun rays run to the sky, not to an origin: they keep their own walk.
                 for (const uint32_t i : reaching.candidates)
                     reaching.clearOfSolid.push_back(
-                        lights[i].type != LightType::Sun && boxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
+                        lights[i].type != LightType::Sun && gridBoxToPointClear(*solidTree, bounds, lights[i].origin) ? 1 : 0);
             }
             points.clear();
             block.forEachPoint([&](int x, int y, int z) {
@@ -215,18 +210,17 @@ void lightGridBlocks(const GridLattice& grid, std::span<const Light> lights, flo
     arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), body); });
 }
 
-uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
-                                 std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
-                                 std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
-                                 bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
-                                 const BlockContributionFn& visit, const BlockSharing* sharing) {
+void traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
+                             std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
+                             std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
+                             bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
+                             const BlockContributionFn& visit) {
     // Per (light, point): its unoccluded contribution and the index of its shadow ray (-1: none).
     struct Scratch {
         std::vector<std::optional<LightContribution>> pending;
         std::vector<int32_t> rayOf;
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
-        std::vector<uint8_t> shared;  // per candidate
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -237,102 +231,35 @@ uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const 
     deferred.deferredRays = env.scene ? &s.rays : nullptr;
     LightingEnv deferredClear = deferred;
     deferredClear.clearOfSolid = true;
-    auto light = [&](size_t k, size_t p) {
-        const size_t before = s.rays.size();
+    for (size_t k = 0; k < nl; ++k) {
+        if (!includes(lights[candidates[k]])) continue;
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
-        std::optional<LightContribution> c =
-            lightToGridPoint(lights[candidates[k]], origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
-        if (!c) {
-            s.rays.resize(before);
-            return;
-        }
-        s.pending[k * np + p] = c;
-        if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
-    };
-    // Traces the rays from `first` on (without a scene nothing is traced: all open).
-    auto traceFrom = [&](size_t first) {
-        s.transmission.resize(s.rays.size(), Vec3{1, 1, 1});
-        if (!env.scene || first >= s.rays.size()) return;
-        env.scene->traceBatch(std::span<const ShadowRay>(s.rays).subspan(first),
-                              std::span<Vec3>(s.transmission).subspan(first), coherent, axialRaysAlone);
-    };
-    s.transmission.clear();
-    const bool share = sharing && env.scene && sharing->corners.size() == np && sharing->far.size() == nl;
-    uint64_t skipped = 0;
-    if (!share) {
-        for (size_t k = 0; k < nl; ++k)
-            if (includes(lights[candidates[k]]))
-                for (size_t p = 0; p < np; ++p) light(k, p);
-        traceFrom(0);
-    } else {
-        const std::span<const uint8_t> corners = sharing->corners;
-        size_t cornerCount = 0;
-        for (uint8_t c : corners) cornerCount += c ? 1 : 0;
-        s.shared.assign(nl, 0);
-        for (size_t k = 0; k < nl; ++k)
-            if (includes(lights[candidates[k]]))
-                for (size_t p = 0; p < np; ++p)
-                    if (corners[p]) light(k, p);
-        traceFrom(0);
-        const size_t cornerRays = s.rays.size();
-        for (size_t k = 0; k < nl; ++k) {
-            if (!includes(lights[candidates[k]])) continue;
-            // The corners agree on a light when no corner's cluster is kept from seeing it and the
-            // corners it reaches (with a ray each) are all open or all blocked; a corner it does not
-            // reach (too faint there, or behind its emitter) holds none of its light.
-            bool open = true, blocked = true, seen = true;
-            size_t reached = 0;
-            for (size_t p = 0; p < np && seen && (open || blocked); ++p) {
-                if (!corners[p]) continue;
-                if (!s.pending[k * np + p]) {
-                    seen = !pvsCulled(lights[candidates[k]], clusters[p], env);
-                    continue;
-                }
-                ++reached;
-                // A corner lit without a ray (too close to the light to trace) agrees with neither.
-                const int32_t ray = s.rayOf[k * np + p];
-                const Vec3 t = ray >= 0 ? s.transmission[size_t(ray)] : Vec3{0.5f, 0.5f, 0.5f};
-                open = open && t == Vec3{1, 1, 1};
-                blocked = blocked && t == Vec3{};
-            }
-            const bool far = sharing->far[k] != 0;
-            // A far light changes little over the block: the points between the corners take
-            // their light. A near one may light points between corners it does not reach (it may
-            // even lie inside the block), so only one reaching every corner counts: blocked at
-            // all of them, it leaves the points between dark; open at all, they light it
-            // themselves without shadow rays.
-            const bool agree = seen && (open || blocked) && (far || reached == cornerCount);
-            if (agree && (far || blocked)) {
-                s.shared[k] = far ? 1 : 0;
-                skipped += np - cornerCount;
+        for (size_t p = 0; p < np; ++p) {
+            const size_t before = s.rays.size();
+            std::optional<LightContribution> c =
+                lightToGridPoint(lights[candidates[k]], origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
+            if (!c) {
+                s.rays.resize(before);
                 continue;
             }
-            for (size_t p = 0; p < np; ++p) {
-                if (corners[p]) continue;
-                const size_t before = s.rays.size();
-                light(k, p);
-                if (agree && s.rays.size() > before) {
-                    s.rays.resize(before);
-                    s.rayOf[k * np + p] = -1;
-                }
-            }
+            s.pending[k * np + p] = c;
+            if (s.rays.size() > before) s.rayOf[k * np + p] = int32_t(before);
         }
-        traceFrom(cornerRays);
     }
+    // Without a scene nothing is traced: all open.
+    s.transmission.assign(s.rays.size(), Vec3{1, 1, 1});
+    if (env.scene && !s.rays.empty()) env.scene->traceBatch(s.rays, s.transmission, coherent, axialRaysAlone);
     // Lights outer, points inner: the pending entries are read in the order they are stored, and
     // each point still receives its lights in light order.
-    for (size_t k = 0; k < nl; ++k) {
-        const BlockContributionFn& report = share && s.shared[k] ? sharing->visitShared : visit;
+    for (size_t k = 0; k < nl; ++k)
         for (size_t p = 0; p < np; ++p) {
             std::optional<LightContribution>& c = s.pending[k * np + p];
             if (!c) continue;
             const int32_t ray = s.rayOf[k * np + p];
             const Vec3* transmission = ray >= 0 ? &s.transmission[size_t(ray)] : nullptr;
             if (transmission) c->color *= *transmission;
-            report(p, candidates[k], *c, transmission);
+            visit(p, candidates[k], *c, transmission);
         }
-    }
-    return skipped;
 }
 
 void lightGridByBlocks(const GridLattice& grid, std::span<const Light> lights, float margin,

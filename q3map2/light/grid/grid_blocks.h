@@ -56,6 +56,10 @@ bool mayLightGridIn(const Light& light, const Bounds& bounds, const Contribution
 void gridLightsReaching(std::span<const Light> lights, const LightReach& reach, const Bounds& bounds,
                         const ContributionSettings& settings, std::vector<uint32_t>& out);
 
+// Whether no segment from a point of `box` to `point` enters structural solid (a hull walk of
+// `tree`; false when unsure).
+bool gridBoxToPointClear(const BspTree& tree, const Bounds& box, Vec3 point);
+
 // The nudges tried for grid points in solid (nearest first), with their box taken once.
 struct GridNudges {
     std::vector<Vec3> offsets;
@@ -142,27 +146,10 @@ using BlockContributionFn =
     std::function<void(size_t point, uint32_t lightIndex, const LightContribution& contribution,
                        const Vec3* transmission)>;
 
-// Light shared across a block (see traceBlockContributions): the block's corner points light it
-// for the points between them.
-struct BlockSharing {
-    std::span<const uint8_t> corners;  // per point: at a corner of the block's lattice box (all free)
-    std::span<const uint8_t> far;      // per candidate: far enough that its light varies smoothly over the block
-    BlockContributionFn visitShared;   // a shared light at a corner point, called instead of visit
-};
-
-// With `sharing` (and a scene), every light is first lit and traced at the corner points. The
-// corners agree on a light when every corner's cluster may see it and the corners it reaches were
-// all reached with a ray, all of them open or all blocked (a corner it does not reach holds none of
-// its light). A far light the corners agree on is shared: the corners report it to
-// sharing->visitShared, and the points between them neither light nor trace it (the caller
-// interpolates the corners). A near light that reaches every corner, blocked at all of them, is
-// left out of the points between them; open at all, it lights them without shadow rays.
-// Occluders smaller than the block can hide from the corners; the SH grid measures what that costs
-// against every pair lit (-shexact). Returns the number of (light, point) pairs not lit.
-uint64_t traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
-                                 std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
-                                 std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
-                                 bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
-                                 const BlockContributionFn& visit, const BlockSharing* sharing = nullptr);
+void traceBlockContributions(std::span<const Light> lights, std::span<const uint32_t> candidates,
+                             std::span<const uint8_t> clearOfSolid, std::span<const float> envelopes,
+                             std::span<const Vec3> origins, std::span<const int> clusters, const LightingEnv& env,
+                             bool coherent, bool axialRaysAlone, const std::function<bool(const Light&)>& includes,
+                             const BlockContributionFn& visit);
 
 }  // namespace q3::light

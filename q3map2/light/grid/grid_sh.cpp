@@ -12,6 +12,7 @@
 #include "grid_sh.h"
 
 #include "grid_encode.h"
+#include "grid_sh_corners.h"
 #include "grid_sh_gather.h"
 #include "light_context.h"
 #include "light_contribution.h"
@@ -57,53 +58,6 @@ void addAreaEmitter(sh::SH9Color& acc, const Light& light, Vec3 pushed, Vec3 tra
 
 }  // namespace
 
-bool blockCornerWeights(std::span<const GridBlockPoint> block, std::span<const size_t> free, std::array<int, 3> bounds,
-                        BlockCornerWeights& out) {
-    const size_t bx = size_t(bounds[0]), by = size_t(bounds[1]);
-    auto latticeOf = [&](size_t i) { return std::array<size_t, 3>{i % bx, (i / bx) % by, i / (bx * by)}; };
-    std::array<size_t, 3> lo{SIZE_MAX, SIZE_MAX, SIZE_MAX}, hi{0, 0, 0};
-    for (const GridBlockPoint& p : block) {
-        const std::array<size_t, 3> c = latticeOf(p.index);
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], c[a]);
-            hi[a] = std::max(hi[a], c[a]);
-        }
-    }
-    out.slotsOf.assign(free.size(), 0);
-    out.weights.assign(free.size(), {});
-    uint8_t filled = 0;
-    size_t cornerPoints = 0;
-    for (size_t k = 0; k < free.size(); ++k) {
-        const std::array<size_t, 3> c = latticeOf(free[k]);
-        std::array<float, 3> t{};
-        for (int a = 0; a < 3; ++a) t[a] = hi[a] > lo[a] ? float(c[a] - lo[a]) / float(hi[a] - lo[a]) : 0.0f;
-        uint8_t slots = 0;
-        for (int slot = 0; slot < 8; ++slot) {
-            float w = 1;
-            bool atSlot = true;
-            for (int a = 0; a < 3; ++a) {
-                const bool upper = (slot >> a) & 1;
-                w *= upper ? t[a] : 1 - t[a];
-                atSlot = atSlot && c[a] == (upper ? hi[a] : lo[a]);
-            }
-            out.weights[k][size_t(slot)] = w;
-            if (atSlot) {
-                slots = uint8_t(slots | (1u << slot));
-                out.slot[size_t(slot)] = k;
-            }
-        }
-        out.slotsOf[k] = slots;
-        filled = uint8_t(filled | slots);
-        cornerPoints += slots ? 1 : 0;
-    }
-    return filled == 0xFF && free.size() > cornerPoints;
-}
-
-namespace {
-
-// Whether `light` is far enough from the box of a block's corners that its light varies smoothly
-// over the block: the gap between the box and the light (an area light's emitter sphere) is at
-// least kFarFromBlock times the box's largest extent. Suns are parallel light.
 constexpr float kFarFromBlock = 1.0f;
 bool farFromBlock(const Light& light, const Bounds& box) {
     if (light.type == LightType::Sun) return true;
@@ -117,14 +71,16 @@ bool farFromBlock(const Light& light, const Bounds& box) {
     return distance(nearest, centre) - radius >= kFarFromBlock * maxComponent(box.maxs - box.mins);
 }
 
+namespace {
+
 bool isBlack(const sh::GridPointSH& p) {  // every coefficient zero
     for (const auto& c : p.coeffs)
         if (c[0] != 0 || c[1] != 0 || c[2] != 0) return false;
     return true;
 }
 
-// Projects a contribution of `light` whose shadow ray let `transmission` through (c.color already
-// multiplied by it).
+}  // namespace
+
 void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
                          Vec3 transmission, const ContributionSettings& settings, bool areaAsOneSample) {
     const sh::Rgb color = toRgb(c.color, 1.0 / 255.0);
@@ -145,8 +101,6 @@ void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, con
     // area lights: one directional sample, as the legacy grid sees it.
     sh::addDirectionalIrradiance(acc, toSh(c.direction), color);
 }
-
-}  // namespace
 
 std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,
                                                        int cluster, const LightingEnv& env, bool areaAsOneSample) {
@@ -171,64 +125,29 @@ void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, st
                             std::span<const int>(&cluster, 1), env);
 }
 
-uint64_t addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
-                                 std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
-                                 std::span<const float> envelopes, std::span<const Vec3> origins,
-                                 std::span<const int> clusters, const LightingEnv& env,
-                                 const BlockCornerWeights* corners) {
+void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                             std::span<const float> envelopes, std::span<const Vec3> origins,
+                             std::span<const int> clusters, const LightingEnv& env) {
     thread_local std::vector<float> ownEnvelopes;
     if (envelopes.empty()) {  // one probe's call: only the candidates' envelopes are read
         ownEnvelopes.assign(lights.size(), 0.0f);
         for (uint32_t i : candidates) ownEnvelopes[i] = lightEnvelope(lights[i], env.settings.forceFast);
         envelopes = ownEnvelopes;
     }
-    auto project = [&](sh::SH9Color& acc, size_t p, uint32_t lightIndex, const LightContribution& c,
-                       const Vec3* transmission) {
+    const BlockContributionFn visit = [&](size_t p, uint32_t lightIndex, const LightContribution& c,
+                                          const Vec3* transmission) {
         const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
         if (t == Vec3{}) return;
-        projectContribution(acc, lights[lightIndex], origins[p], c, t, env.settings, false);
+        projectContribution(accs[p], lights[lightIndex], origins[p], c, t, env.settings, false);
     };
-    const BlockContributionFn visit = [&](size_t p, uint32_t lightIndex, const LightContribution& c,
-                                          const Vec3* transmission) { project(accs[p], p, lightIndex, c, transmission); };
     const std::function<bool(const Light&)> styleZero = [](const Light& light) {
         return light.style == 0;  // IBSP grids hold style 0 only (styled light is switchable)
     };
     // One stream per block, flagged incoherent: the rays spread from the probes towards every light
     // (measured faster than one call per ray and than a coherent stream on oacmpctf1 and oacmpdm4).
-    if (!corners || corners->slotsOf.size() != origins.size())
-        return traceBlockContributions(lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false,
-                                       false, styleZero, visit);
-
-    // The far lights' light at each corner slot, interpolated to the other probes at the end.
-    Bounds box;
-    for (size_t p = 0; p < origins.size(); ++p)
-        if (corners->slotsOf[p]) box.add(origins[p]);
-    thread_local std::vector<uint8_t> far;
-    far.clear();
-    for (uint32_t i : candidates) far.push_back(farFromBlock(lights[i], box) ? 1 : 0);
-    std::array<sh::SH9Color, 8> slotLight{};
-    BlockSharing sharing;
-    sharing.corners = corners->slotsOf;
-    sharing.far = far;
-    sharing.visitShared = [&](size_t p, uint32_t lightIndex, const LightContribution& c, const Vec3* transmission) {
-        sh::SH9Color one;
-        project(one, p, lightIndex, c, transmission);
-        accs[p] = sh::add(accs[p], one);
-        for (size_t slot = 0; slot < 8; ++slot)
-            if ((corners->slotsOf[p] >> slot) & 1) slotLight[slot] = sh::add(slotLight[slot], one);
-    };
-    const uint64_t skipped = traceBlockContributions(lights, candidates, clearOfSolid, envelopes, origins, clusters,
-                                                     env, false, false, styleZero, visit, &sharing);
-    for (size_t p = 0; p < origins.size(); ++p) {
-        if (corners->slotsOf[p]) continue;
-        for (size_t slot = 0; slot < 8; ++slot) {
-            const double w = corners->weights[p][slot];
-            if (w == 0) continue;
-            for (int k = 0; k < sh::kCoeffCount; ++k)
-                for (int ch = 0; ch < 3; ++ch) accs[p].c[k][ch] += w * slotLight[slot].c[k][ch];
-        }
-    }
-    return skipped;
+    traceBlockContributions(lights, candidates, clearOfSolid, envelopes, origins, clusters, env, false, false,
+                            styleZero, visit);
 }
 
 void applyAmbientAndFloor(sh::SH9Color& acc, Vec3 ambient, Vec3 minLight) {
@@ -370,16 +289,22 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
         // Nudged points move at most nudgeRadius from their lattice position.
         lightGridByBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,
                           lightPoint);
+    } else if (!ctx.options.shExact) {
+        const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
+        const ShPointSink sink{[&](size_t i, Vec3 latticePoint) { return place(i, latticePoint); },
+                               [&](size_t i, sh::SH9Color& acc) { store(i, acc); }};
+        sharedPairs = traceGridSHSharedCorners(lattice, ctx.lights, outOfGrid, envelopes, env, nudgeRadius + 1.0f,
+                                               useTree ? ctx.tree.get() : nullptr, ctx.threads, progress, sink);
     } else {
-        // Block by block: the shadow rays of all the block's probes go to the scene as one stream,
-        // and lights whose rays from the whole block meet no structural solid skip the tree walk.
+        // -shexact: every light lit and traced at every point, block by block (the shadow rays of
+        // all the block's probes go to the scene as one stream, and lights whose rays from the
+        // whole block meet no structural solid skip the tree walk).
         const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
         auto lightBlock = [&](std::span<const GridBlockPoint> blockPoints, const BlockLights& reaching) {
             thread_local std::vector<size_t> index;
             thread_local std::vector<Vec3> at;
             thread_local std::vector<int> clusters;
             thread_local std::vector<sh::SH9Color> accs;
-            thread_local BlockCornerWeights corners;
             thread_local std::vector<uint32_t> candidates;
             thread_local std::vector<uint8_t> clearOfSolid;
             index.clear();
@@ -406,9 +331,7 @@ sh::GridLumpImage traceGridSH(const LightContext& ctx, const ShGridLayout& layou
                 candidates.push_back(i);
                 if (!reaching.clearOfSolid.empty()) clearOfSolid.push_back(reaching.clearOfSolid[k]);
             }
-            const bool share = !ctx.options.shExact && blockCornerWeights(blockPoints, index, layout.bounds, corners);
-            sharedPairs += addLightsToGridPointsSH(accs, ctx.lights, candidates, clearOfSolid, envelopes, at, clusters,
-                                                   env, share ? &corners : nullptr);
+            addLightsToGridPointsSH(accs, ctx.lights, candidates, clearOfSolid, envelopes, at, clusters, env);
             for (size_t k = 0; k < index.size(); ++k) store(index[k], accs[k]);
         };
         lightGridBlocks(lattice, ctx.lights, nudgeRadius + 1.0f, env.settings, kBlockEdge, ctx.threads, progress,

@@ -75,7 +75,7 @@ struct ShTraceStats {
     uint64_t blackAfterFill = 0;  // all-zero points at the end
     std::vector<uint8_t> solid;   // per point: 1 = stayed in solid
     std::vector<Vec3> origins;    // per point, with -shgather only: where it was lit (lattice or nudged position)
-    uint64_t sharedPairs = 0;     // (light, probe) pairs taken from their block's corners (none with -shexact)
+    uint64_t sharedPairs = 0;     // (light, probe) pairs taken from their block's corners or left out (none with -shexact)
 };
 
 // The SH projection of one light at one (free) grid point, in SH units (1.0 = legacy byte 255,
@@ -87,36 +87,29 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
                                                        int cluster, const LightingEnv& env,
                                                        bool areaAsOneSample = false);
 
+// Projects a contribution of `light` at `origin` whose shadow ray let `transmission` through
+// (c.color already multiplied by it): close area lights integrated over their emitter unless
+// `areaAsOneSample`, every other light one directional sample.
+void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
+                         Vec3 transmission, const ContributionSettings& settings, bool areaAsOneSample);
+
+// Whether `light` is far enough from `box` (the box of a block's corners) that its light varies
+// smoothly over the block: the gap between the box and the light (an area light's emitter sphere)
+// is at least the box's largest extent. Suns are parallel light.
+bool farFromBlock(const Light& light, const Bounds& box);
+
 // The same for every style-0 light of `candidates` (indices into `lights`, in order), their shadow
 // rays traced as one batch.
 void addLightsToGridPointSH(sh::SH9Color& acc, std::span<const Light> lights, std::span<const uint32_t> candidates,
                             Vec3 origin, int cluster, const LightingEnv& env);
-// The corner probes of a block of free probes and every probe's trilinear weights over them
-// (slot bit 0: upper x, bit 1: upper y, bit 2: upper z; an axis one probe thick uses its lower
-// slots only).
-struct BlockCornerWeights {
-    std::vector<uint8_t> slotsOf;                // per probe: the slots it fills (0: not a corner)
-    std::array<size_t, 8> slot{};                // the probe at each slot
-    std::vector<std::array<float, 8>> weights;   // per probe, over the slots
-};
-// The corners of a block (`block`: its lattice points; `free`: the grid indices of its free points,
-// in block order, the probes `out` describes; `bounds`: points per axis of the grid). False when a
-// corner is in solid (its light is missing, so the block must light every pair itself) or every
-// free point is a corner.
-bool blockCornerWeights(std::span<const GridBlockPoint> block, std::span<const size_t> free, std::array<int, 3> bounds,
-                        BlockCornerWeights& out);
-
 // The same for several free points (`origins`, `clusters`, one accumulator each), the shadow rays
 // of all of them traced as one batch; each point still adds its lights in light order.
 // `clearOfSolid[k]`, when given, says that candidate k's rays from every point meet no structural
-// solid; `envelopes`, when given, holds lightEnvelope of every light. `corners`, when given, lets
-// the lights far from the block be lit at its corners only and interpolated between them
-// (traceBlockContributions). Returns the number of (light, point) pairs not lit.
-uint64_t addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
-                                 std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
-                                 std::span<const float> envelopes, std::span<const Vec3> origins,
-                                 std::span<const int> clusters, const LightingEnv& env,
-                                 const BlockCornerWeights* corners = nullptr);
+// solid; `envelopes`, when given, holds lightEnvelope of every light.
+void addLightsToGridPointsSH(std::span<sh::SH9Color> accs, std::span<const Light> lights,
+                             std::span<const uint32_t> candidates, std::span<const uint8_t> clearOfSolid,
+                             std::span<const float> envelopes, std::span<const Vec3> origins,
+                             std::span<const int> clusters, const LightingEnv& env);
 
 // Ambient and the minlight floor on coefficient 0 (inputs in legacy units, 0..255): the ambient
 // adds ambient/255 * 2*sqrt(pi); then, per channel, coefficient 0 is raised so that the uniform
