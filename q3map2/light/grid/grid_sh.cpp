@@ -81,12 +81,12 @@ bool isBlack(const sh::GridPointSH& p) {  // every coefficient zero
 
 }  // namespace
 
-void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
+bool projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
                          Vec3 transmission, const ContributionSettings& settings, bool areaAsOneSample) {
     const sh::Rgb color = toRgb(c.color, 1.0 / 255.0);
     if (light.controlled && light.type != LightType::Sun) {
         sh::addControlledIncidence(acc, toSh(c.direction), color, light.controlled->dotProductWeight);
-        return;
+        return false;
     }
     if (light.type == LightType::Area && !settings.faster && !areaAsOneSample && light.winding.size() >= 3) {
         const float d = dot(origin, light.normal) - light.planeDist;
@@ -94,12 +94,13 @@ void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, con
         const Vec3 pushed = nearPlane ? origin + light.normal * (kAreaPushDistance - d) : origin;
         if (maxComponent(c.color) >= kMinSpreadLight && closeToEmitter(light, pushed)) {
             addAreaEmitter(acc, light, pushed, transmission);
-            return;
+            return true;
         }
     }
     // Points, spots, suns (each jittered sun sample and each sky-dome sun is its own light), far
     // area lights: one directional sample, as the legacy grid sees it.
     sh::addDirectionalIrradiance(acc, toSh(c.direction), color);
+    return false;
 }
 
 std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const Light& light, Vec3 origin,

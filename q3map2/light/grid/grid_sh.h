@@ -89,8 +89,9 @@ std::optional<LightContribution> addLightToGridPointSH(sh::SH9Color& acc, const 
 
 // Projects a contribution of `light` at `origin` whose shadow ray let `transmission` through
 // (c.color already multiplied by it): close area lights integrated over their emitter unless
-// `areaAsOneSample`, every other light one directional sample.
-void projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
+// `areaAsOneSample`, every other light one directional sample. Returns whether it integrated an
+// emitter (the costly form; the others are cheap to project again).
+bool projectContribution(sh::SH9Color& acc, const Light& light, Vec3 origin, const LightContribution& c,
                          Vec3 transmission, const ContributionSettings& settings, bool areaAsOneSample);
 
 // Whether `light` is far enough from `box` (the box of a block's corners) that its light varies

@@ -35,21 +35,26 @@ std::vector<int> cornerCoords(int count, int step) {
     return out;
 }
 
-// One light at a corner point: its unoccluded contribution and what its shadow ray let through.
+// What a block needs to know of one light at a corner point: whether its shadow ray was open,
+// blocked or neither (partly transmitted, or no ray), and its light there (shadowed). Without
+// -fast every light reaches every corner, so this is kept small: a directional contribution is
+// projected again where it is shared, and only an emitter's integral (the costly projection) is
+// kept, in floats.
+enum class CornerRay : uint8_t { Open, Blocked, Other };
 struct CornerLight {
-    uint32_t light = 0;
-    LightContribution unoccluded;
-    Vec3 transmission{1, 1, 1};
-    bool traced = false;  // false: lit without a ray (too close to trace, or no scene)
-    sh::SH9Color projected;  // its share of the point's light (shadowed)
+    CornerRay ray = CornerRay::Other;
+    int32_t integral = -1;  // index into CornerPoint::integrals, or -1: project color / direction again
+    Vec3 color;             // already multiplied by the transmission
+    Vec3 direction;
 };
 
 struct CornerPoint {
     bool free = false;
     Vec3 origin;
     int cluster = -1;
-    std::vector<CornerLight> lights;  // ascending light index
-    std::vector<uint32_t> ids;        // lights[k].light, for the blocks' merge walks
+    std::vector<uint32_t> ids;        // the lights it holds, ascending (the blocks walk them in step)
+    std::vector<CornerLight> lights;  // per id
+    std::vector<std::array<float, sh::kCoeffCount * 3>> integrals;
 };
 
 struct Shared {
@@ -93,7 +98,9 @@ struct Shared {
 // parts and stores the point's own light.
 void lightCorner(Shared& s, int x, int y, int z, CornerPoint& out) {
     const size_t index = s.index(x, y, z);
+    out.ids.clear();
     out.lights.clear();
+    out.integrals.clear();
     const std::optional<PlacedGridPoint> placed = s.sink.place(index, s.lattice(x, y, z));
     s.progress.advance(1);
     if (!placed) return;
@@ -120,25 +127,31 @@ void lightCorner(Shared& s, int x, int y, int z, CornerPoint& out) {
             rays.resize(before);
             continue;
         }
-        const bool traced = rays.size() > before;
-        out.lights.push_back({i, *c, {1, 1, 1}, traced, {}});
-        rayOf.push_back(traced ? int32_t(before) : -1);
+        out.ids.push_back(i);
+        out.lights.push_back({CornerRay::Other, -1, c->color, c->direction});
+        rayOf.push_back(rays.size() > before ? int32_t(before) : -1);
     }
     transmission.assign(rays.size(), Vec3{1, 1, 1});
     if (s.env.scene && !rays.empty()) s.env.scene->traceBatch(rays, transmission, false, false);
-    sh::SH9Color light;
+    sh::SH9Color sum;
     for (size_t k = 0; k < out.lights.size(); ++k) {
         CornerLight& c = out.lights[k];
-        if (rayOf[k] >= 0) c.transmission = transmission[size_t(rayOf[k])];
-        if (c.transmission == Vec3{}) continue;
-        LightContribution lit = c.unoccluded;
-        lit.color *= c.transmission;
-        projectContribution(c.projected, s.lights[c.light], out.origin, lit, c.transmission, s.env.settings, false);
-        light = sh::add(light, c.projected);
+        const Vec3 t = rayOf[k] >= 0 ? transmission[size_t(rayOf[k])] : Vec3{1, 1, 1};
+        if (rayOf[k] >= 0)
+            c.ray = t == Vec3{1, 1, 1} ? CornerRay::Open : t == Vec3{} ? CornerRay::Blocked : CornerRay::Other;
+        c.color *= t;
+        if (t == Vec3{}) continue;
+        sh::SH9Color one;
+        const Light& light = s.lights[out.ids[k]];
+        if (projectContribution(one, light, out.origin, {c.color, c.direction, light.style}, t, s.env.settings, false)) {
+            c.integral = int32_t(out.integrals.size());
+            std::array<float, sh::kCoeffCount * 3>& kept = out.integrals.emplace_back();
+            for (int j = 0; j < sh::kCoeffCount; ++j)
+                for (int ch = 0; ch < 3; ++ch) kept[size_t(3 * j + ch)] = float(one.c[j][ch]);
+        }
+        sum = sh::add(sum, one);
     }
-    out.ids.clear();
-    for (const CornerLight& c : out.lights) out.ids.push_back(c.light);
-    s.sink.store(index, light);
+    s.sink.store(index, sum);
 }
 
 std::vector<CornerPoint> lightCornerPlane(Shared& s, int z) {
@@ -242,15 +255,28 @@ void lightBlock(Shared& s, std::array<size_t, 3> blockAt, const std::array<const
                     continue;
                 }
                 ++reached;
-                const Vec3 t = at->traced ? at->transmission : Vec3{0.5f, 0.5f, 0.5f};
-                open = open && t == Vec3{1, 1, 1};
-                blocked = blocked && t == Vec3{};
+                open = open && at->ray == CornerRay::Open;
+                blocked = blocked && at->ray == CornerRay::Blocked;
             }
             const bool far = farFromBlock(light, cornerBox);
             const bool agree = seen && (open || blocked) && (far || reached == cornerCount);
             if (agree && far) {
-                for (size_t slot = 0; slot < 8; ++slot)
-                    if (const CornerLight* at = found[distinctOf[slot]]) slotLight[slot] = sh::add(slotLight[slot], at->projected);
+                for (size_t slot = 0; slot < 8; ++slot) {
+                    const CornerPoint& corner = *slots[slot];
+                    const CornerLight* at = found[distinctOf[slot]];
+                    if (!at || at->ray == CornerRay::Blocked) continue;
+                    if (at->integral < 0) {
+                        // Not an emitter's integral at the corner, so not here either: the
+                        // transmission, which only tints an integral, is not needed.
+                        projectContribution(slotLight[slot], light, corner.origin,
+                                            {at->color, at->direction, light.style}, Vec3{1, 1, 1}, s.env.settings,
+                                            false);
+                        continue;
+                    }
+                    const std::array<float, sh::kCoeffCount * 3>& kept = corner.integrals[size_t(at->integral)];
+                    for (int j = 0; j < sh::kCoeffCount; ++j)
+                        for (int ch = 0; ch < 3; ++ch) slotLight[slot].c[j][ch] += double(kept[size_t(3 * j + ch)]);
+                }
                 skipped += np;
                 continue;
             }

@@ -1,7 +1,7 @@
 // The SH grid's default trace: blocks between corner points about 128 units apart per axis (4 x 4
 // x 2 cells of the default SH grid), each corner point shared with the neighbouring blocks. Every
-// corner point is lit once, with every light, and keeps each light's unoccluded contribution,
-// shadow-ray transmission and SH share. A block reads its corners light by light. They agree on a
+// corner point is lit once, with every light, and keeps per light whether its shadow ray was open
+// or blocked and its light there. A block reads its corners light by light. They agree on a
 // light when every corner's cluster may see it and the corners it reaches were all reached with a
 // ray, all of them open or all blocked (a corner it does not reach holds none of its light). A far
 // light (farFromBlock) the corners agree on is interpolated from them; a near one that reaches
