@@ -94,8 +94,8 @@ struct Shared {
     }
 };
 
-// Lights one corner point with every light that may reach the blocks around it, keeps each light's
-// parts and stores the point's own light.
+// Lights one corner point with every light that may reach it, keeps what the blocks around it
+// need of each (CornerLight) and stores the point's own light.
 void lightCorner(Shared& s, int x, int y, int z, CornerPoint& out) {
     const size_t index = s.index(x, y, z);
     out.ids.clear();
