@@ -295,21 +295,11 @@ void lightBlock(Shared& s, std::array<size_t, 3> blockAt, const std::array<const
 
     thread_local std::vector<sh::SH9Color> accs;
     accs.assign(np, sh::SH9Color{});
-    const BlockContributionFn visit = [&](size_t p, uint32_t lightIndex, const LightContribution& c,
-                                          const Vec3* transmission) {
-        const Vec3 t = transmission ? *transmission : Vec3{1, 1, 1};
-        if (t == Vec3{}) return;
-        projectContribution(accs[p], s.lights[lightIndex], origins[p], c, t, s.env.settings, false);
-    };
-    const std::function<bool(const Light&)> all = [](const Light&) { return true; };
-    // One stream per block, flagged incoherent: the rays spread from the points towards every light.
-    traceBlockContributions(s.lights, withRays, clearWithRays, s.envelopes, origins, clusters, s.env, false, false,
-                            all, visit);
+    addLightsToGridPointsSH(accs, s.lights, withRays, clearWithRays, s.envelopes, origins, clusters, s.env);
     if (!withoutRays.empty()) {
         LightingEnv unshadowed = s.env;
         unshadowed.scene = nullptr;
-        traceBlockContributions(s.lights, withoutRays, {}, s.envelopes, origins, clusters, unshadowed, false, false,
-                                all, visit);
+        addLightsToGridPointsSH(accs, s.lights, withoutRays, {}, s.envelopes, origins, clusters, unshadowed);
     }
     for (size_t p = 0; p < np; ++p) {
         if (share) {
