@@ -1,7 +1,9 @@
 #include "file_io.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
@@ -14,18 +16,6 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string errnoText() { return std::strerror(errno); }
-
-void writeAll(int fd, const uint8_t* data, size_t size, const fs::path& shownAs) {
-    while (size > 0) {
-        ssize_t n = ::write(fd, data, size);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            throw FileError(shownAs.string() + ": write failed: " + errnoText());
-        }
-        data += n;
-        size -= static_cast<size_t>(n);
-    }
-}
 
 }  // namespace
 
@@ -51,13 +41,25 @@ std::string atomicTempPrefix(const fs::path& target) {
     return target.filename().string() + ".tmp-";
 }
 
+namespace {
+
+// Direct I/O wants the buffer, the length and the file offset aligned to the device's logical
+// block; a page covers every usual one. A whole buffer is a whole number of pages.
+constexpr size_t kDirectAlign = 4096;
+constexpr size_t kBufferSize = size_t(1) << 20;
+
+}  // namespace
+
+void AtomicFileWriter::FreeAligned::operator()(uint8_t* p) const { std::free(p); }
+
 AtomicFileWriter::AtomicFileWriter(fs::path target) : target_(std::move(target)) {
     static std::atomic<unsigned> counter{0};
     fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
     temp_ = dir / (atomicTempPrefix(target_) + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)));
+    buffer_.reset(static_cast<uint8_t*>(std::aligned_alloc(kDirectAlign, kBufferSize)));
+    if (!buffer_) throw FileError(target_.string() + ": out of memory for the write buffer");
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd_ < 0) throw FileError(target_.string() + ": cannot create temporary file: " + errnoText());
-    buffer_.reserve(1 << 20);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -67,17 +69,49 @@ AtomicFileWriter::~AtomicFileWriter() {
     }
 }
 
+void AtomicFileWriter::setDirect(bool on) {
+    if (direct_ == on) return;
+    const int flags = ::fcntl(fd_, F_GETFL);
+    // A file system without direct I/O refuses the flag: the file stays buffered.
+    if (flags >= 0 && ::fcntl(fd_, F_SETFL, on ? flags | O_DIRECT : flags & ~O_DIRECT) == 0) direct_ = on;
+}
+
 void AtomicFileWriter::flushBuffer() {
-    writeAll(fd_, buffer_.data(), buffer_.size(), target_);
-    buffer_.clear();
+    const uint8_t* data = buffer_.get();
+    size_t size = used_;
+    used_ = 0;
+    // Only a whole buffer goes direct; a short last one goes through the page cache.
+    if (size == kBufferSize) setDirect(true);
+    else setDirect(false);
+    while (size > 0) {
+        ssize_t n = ::write(fd_, data, size);
+        if (n < 0 && errno == EINVAL && direct_) {
+            // Direct I/O refused this write (alignment the device wants beyond a page, or an
+            // offset left unaligned by a short write): the rest goes buffered.
+            setDirect(false);
+            if (direct_) throw FileError(target_.string() + ": write failed: " + errnoText());
+            continue;
+        }
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            throw FileError(target_.string() + ": write failed: " + errnoText());
+        }
+        data += n;
+        size -= static_cast<size_t>(n);
+    }
 }
 
 void AtomicFileWriter::write(const void* data, size_t size) {
     if (fd_ < 0) throw FileError(target_.string() + ": write after commit");
     const uint8_t* bytes = static_cast<const uint8_t*>(data);
-    if (buffer_.size() + size > buffer_.capacity()) flushBuffer();
-    if (size >= buffer_.capacity()) writeAll(fd_, bytes, size, target_);
-    else buffer_.insert(buffer_.end(), bytes, bytes + size);
+    while (size > 0) {
+        const size_t n = std::min(size, kBufferSize - used_);
+        std::memcpy(buffer_.get() + used_, bytes, n);
+        used_ += n;
+        bytes += n;
+        size -= n;
+        if (used_ == kBufferSize) flushBuffer();
+    }
 }
 
 void AtomicFileWriter::commit() {

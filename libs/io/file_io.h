@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -27,6 +28,9 @@ void writeFileAtomic(const std::filesystem::path& path, const std::string& text)
 // Streaming form of writeFileAtomic for outputs too large to build in memory first: bytes go to
 // the temporary file as they come; commit() flushes it to disk and renames it over the target.
 // Destroyed without commit() (an exception, an early return), the temporary is removed.
+// A file past its first buffer goes on with direct I/O (O_DIRECT) where the file system takes it:
+// an SH lump of tens of megabytes then goes to disk from the buffer instead of through fresh page
+// cache, which costs several times more (docs/performance.md).
 class AtomicFileWriter {
 public:
     explicit AtomicFileWriter(std::filesystem::path target);
@@ -38,12 +42,18 @@ public:
     void commit();
 
 private:
+    struct FreeAligned {
+        void operator()(uint8_t* p) const;
+    };
     void flushBuffer();
+    void setDirect(bool on);
 
     std::filesystem::path target_;
     std::filesystem::path temp_;
     int fd_ = -1;
-    std::vector<uint8_t> buffer_;
+    bool direct_ = false;  // O_DIRECT on: whole buffers at aligned offsets only
+    std::unique_ptr<uint8_t[], FreeAligned> buffer_;  // kBufferSize bytes, page aligned
+    size_t used_ = 0;
 };
 
 // The prefix of temporary files written by writeFileAtomic ("<name>.tmp-<pid>-<n>"), so that a

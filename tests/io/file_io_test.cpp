@@ -52,6 +52,28 @@ TEST(FileIo, StreamingWriterCommitsLargeOutput) {
     EXPECT_EQ(filesIn(dir), 1u);
 }
 
+// Past its first buffer (1 MiB) the writer goes on with direct I/O and writes a short last buffer
+// through the page cache: every length around those edges, in pieces of odd sizes, reads back whole.
+TEST(FileIo, StreamingWriterKeepsEveryByteAroundItsBufferEdges) {
+    fs::path dir = test::tempDir();
+    fs::path target = dir / "edges.bin";
+    constexpr size_t kMiB = size_t(1) << 20;
+    for (size_t size : {size_t(0), size_t(1), size_t(4095), size_t(4096), kMiB - 1, kMiB, kMiB + 1, 2 * kMiB,
+                        3 * kMiB + 4097}) {
+        std::vector<uint8_t> bytes(size);
+        for (size_t i = 0; i < size; ++i) bytes[i] = uint8_t((i * 2654435761u) >> 13);
+        AtomicFileWriter writer(target);
+        for (size_t at = 0, piece = 1; at < size; piece = piece * 3 % 200003 + 1) {
+            const size_t n = std::min(piece, size - at);
+            writer.write(bytes.data() + at, n);
+            at += n;
+        }
+        writer.commit();
+        EXPECT_EQ(readFileBytes(target), bytes) << size << " bytes";
+    }
+    EXPECT_EQ(filesIn(dir), 1u);
+}
+
 TEST(FileIo, AbandonedWriterLeavesTargetAndNoTemporary) {
     fs::path dir = test::tempDir();
     fs::path target = dir / "keep.txt";
