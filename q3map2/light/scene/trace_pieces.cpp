@@ -1,6 +1,10 @@
 // q3map2's trace pieces of the shadow casters (see trace_pieces.h).
 #include "trace_pieces.h"
 
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
 #include <cmath>
 #include <utility>
 
@@ -30,8 +34,20 @@ void clipWinding(const Winding& w, Vec3 normal, float dist, Winding& front, Wind
     back.v.clear();
     front.surface = back.surface = w.surface;
     const size_t n = w.v.size();
-    std::vector<float> dists(n);
-    std::vector<int> sides(n);  // 1 front, -1 back, 0 on
+    // Scratch on the stack for the usual few corners: this runs for every cut of every caster.
+    constexpr size_t kOnStack = 32;
+    float distsOnStack[kOnStack];
+    int sidesOnStack[kOnStack];
+    std::vector<float> distsOnHeap;
+    std::vector<int> sidesOnHeap;
+    float* dists = distsOnStack;
+    int* sides = sidesOnStack;  // 1 front, -1 back, 0 on
+    if (n > kOnStack) {
+        distsOnHeap.resize(n);
+        sidesOnHeap.resize(n);
+        dists = distsOnHeap.data();
+        sides = sidesOnHeap.data();
+    }
     int counts[3] = {0, 0, 0};
     for (size_t i = 0; i < n; ++i) {
         dists[i] = dot(normal, w.v[i].xyz) - dist;
@@ -80,9 +96,17 @@ struct Leaf {
     int depth = 0;
 };
 
+// A winding that reached a leaf at a depth (filterIntoLeaves' output, in the order it reached them).
+struct LeafWinding {
+    size_t leaf;
+    int depth;
+    Winding w;
+};
+
 // q3map2 FilterTraceWindingIntoNodes_r: a winding on a node's plane goes to the side it faces,
 // uncut; the others are cut by the plane.
-void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float planeDist, std::vector<Leaf>& leaves) {
+void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float planeDist, size_t leafCount,
+                      std::vector<LeafWinding>& out) {
     struct Item {
         Winding w;
         int32_t node;  // >= 0 node, < 0 leaf -(index + 1)
@@ -95,10 +119,7 @@ void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float pl
         stack.pop_back();
         if (item.node < 0) {
             const size_t leaf = size_t(-(item.node + 1));
-            if (leaf < leaves.size()) {
-                leaves[leaf].depth = item.depth;
-                leaves[leaf].windings.push_back(std::move(item.w));
-            }
+            if (leaf < leafCount) out.push_back({leaf, item.depth, std::move(item.w)});
             continue;
         }
         if (size_t(item.node) >= bsp.nodes.size()) continue;
@@ -200,15 +221,25 @@ void appendPieces(const Winding& w, bool exact, SceneSurface& out) {
 }  // namespace
 
 std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
-                                            const TraceSceneOptions& options, TraceLeafContents* contents) {
+                                            const TraceSceneOptions& options, TraceLeafContents* contents,
+                                            int threads) {
     std::vector<SceneSurface> out(surfaces.size());
-    std::vector<Winding> direct;  // without a tree: the triangles themselves
-    std::vector<Leaf> leaves(bsp.nodes.empty() ? 0 : bsp.leafs.size());
-    for (size_t i = 0; i < surfaces.size(); ++i) {
+    const size_t leafCount = bsp.nodes.empty() ? 0 : bsp.leafs.size();
+    // Every caster's triangles filtered down the tree, each surface on its own (in parallel); the
+    // results are gathered in surface order below, so the leaves hold what the sequential filter
+    // would put there, in the same order.
+    std::vector<std::vector<LeafWinding>> filtered(surfaces.size());
+    std::vector<std::vector<Winding>> direct(surfaces.size());  // without a tree: the triangles themselves
+    std::vector<Leaf> leaves(leafCount);
+    // Per leaf: whether it holds pieces, whether q3map2 subdivides it, and the windings its
+    // subdivision emits, in order.
+    std::vector<uint8_t> holdsPieces(leafCount, 0), subdivided(leafCount, 0);
+    std::vector<std::vector<Winding>> emitted(leafCount);
+    auto filterSurface = [&](size_t i) {
         const SceneSurface& s = surfaces[i];
         if (!TraceScene::castsShadow(s, options)) {
             out[i] = s;
-            continue;
+            return;
         }
         SceneSurface& piece = out[i];
         piece.surfaceNum = s.surfaceNum;
@@ -237,27 +268,46 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
             if (!(len > 0)) continue;
             const Vec3 normal = n / len;
             const float dist = dot(w.v[0].xyz, normal);
-            if (leaves.empty())
-                direct.push_back(std::move(w));
+            if (leafCount == 0)
+                direct[i].push_back(std::move(w));
             else
-                filterIntoLeaves(bsp, std::move(w), normal, dist, leaves);
+                filterIntoLeaves(bsp, std::move(w), normal, dist, leafCount, filtered[i]);
         }
-    }
-    auto emit = [&](Winding&& w) {
+    };
+    auto subdivide = [&](size_t l) {
+        holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
+        subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
+        subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth,
+                      [&emitted, l](Winding&& w) { emitted[l].push_back(std::move(w)); });
+    };
+    tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) filterSurface(i);
+        });
+        for (std::vector<LeafWinding>& list : filtered) {
+            for (LeafWinding& lw : list) {
+                leaves[lw.leaf].depth = lw.depth;
+                leaves[lw.leaf].windings.push_back(std::move(lw.w));
+            }
+            std::vector<LeafWinding>().swap(list);
+        }
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, leafCount, 16), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t l = r.begin(); l != r.end(); ++l) subdivide(l);
+        });
+    });
+    auto emit = [&](const Winding& w) {
         const SceneSurface& s = surfaces[w.surface];
         const bool exact = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !s.shader->sky;
         appendPieces(w, exact, out[w.surface]);
     };
-    for (Winding& w : direct) emit(std::move(w));
+    for (const std::vector<Winding>& list : direct)
+        for (const Winding& w : list) emit(w);
     if (contents) {
-        contents->holdsPieces.assign(leaves.size(), 0);
-        contents->subdivided.assign(leaves.size(), 0);
-        for (size_t l = 0; l < leaves.size(); ++l) {
-            contents->holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
-            contents->subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
-        }
+        contents->holdsPieces = std::move(holdsPieces);
+        contents->subdivided = std::move(subdivided);
     }
-    for (Leaf& leaf : leaves) subdivideLeaf(std::move(leaf.windings), leaf.depth, emit);
+    for (const std::vector<Winding>& list : emitted)
+        for (const Winding& w : list) emit(w);
     return out;
 }
 
