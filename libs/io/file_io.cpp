@@ -17,6 +17,11 @@ namespace {
 
 std::string errnoText() { return std::strerror(errno); }
 
+// Direct I/O wants the buffer, the length and the file offset aligned to the device's logical
+// block; a page covers every usual one. A whole buffer is a whole number of pages.
+constexpr size_t kDirectAlign = 4096;
+constexpr size_t kBufferSize = size_t(1) << 20;
+
 }  // namespace
 
 std::vector<uint8_t> readFileBytes(const fs::path& path) {
@@ -40,15 +45,6 @@ std::string readFileText(const fs::path& path) {
 std::string atomicTempPrefix(const fs::path& target) {
     return target.filename().string() + ".tmp-";
 }
-
-namespace {
-
-// Direct I/O wants the buffer, the length and the file offset aligned to the device's logical
-// block; a page covers every usual one. A whole buffer is a whole number of pages.
-constexpr size_t kDirectAlign = 4096;
-constexpr size_t kBufferSize = size_t(1) << 20;
-
-}  // namespace
 
 void AtomicFileWriter::FreeAligned::operator()(uint8_t* p) const { std::free(p); }
 
@@ -81,8 +77,7 @@ void AtomicFileWriter::flushBuffer() {
     size_t size = used_;
     used_ = 0;
     // Only a whole buffer goes direct; a short last one goes through the page cache.
-    if (size == kBufferSize) setDirect(true);
-    else setDirect(false);
+    setDirect(size == kBufferSize);
     while (size > 0) {
         ssize_t n = ::write(fd_, data, size);
         if (n < 0 && errno == EINVAL && direct_) {

@@ -275,8 +275,10 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
         }
     };
     auto subdivide = [&](size_t l) {
-        holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
-        subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
+        if (contents) {
+            holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
+            subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
+        }
         subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth,
                       [&emitted, l](Winding&& w) { emitted[l].push_back(std::move(w)); });
     };
