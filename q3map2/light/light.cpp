@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <future>
 
 #include "file_io.h"
 #include "light_context.h"
@@ -118,6 +119,11 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     phase("lights");
     createLights(ctx, log);
     ctx.luxelPasses = prepareLuxelPasses(ctx, log);
+    // The grid's points are placed while the lightmaps are lit: the placement's serial search for
+    // free nudges then leaves no core idle.
+    std::future<GridPlacement> gridPlacement;
+    if (!options.noGrid && ctx.threads != 1)
+        gridPlacement = std::async(std::launch::async, [&ctx] { return placeLightGrid(ctx); });
     if (!options.noLightmaps) {
         phase("lightmaps");
         lightLightmaps(ctx, log);
@@ -130,7 +136,12 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     // The SH grid (SetupGridSH / TraceGridSH) runs beside the legacy grid from the same light list.
     if (!options.noGrid) {
         phase("light grid");
-        lightGrid(ctx, log);
+        if (gridPlacement.valid()) {
+            const GridPlacement placed = gridPlacement.get();
+            lightGrid(ctx, log, &placed);
+        } else {
+            lightGrid(ctx, log);
+        }
     }
     std::optional<GridDimensions> shGrid;
     if (options.sh && !options.noGrid) {

@@ -11,6 +11,8 @@
 #include "bsp_tree.h"
 #include "bspfile.h"
 #include "color_pipeline.h"
+#include "grid_blocks.h"
+#include "grid_encode.h"
 #include "grid_sh_gather.h"
 #include "light_contribution.h"
 #include "light_options.h"
@@ -119,8 +121,18 @@ int assignLightClusters(const LightContext& ctx, std::vector<Light>& lights);
 void lightLightmaps(LightContext& ctx, Log& log);
 // Vertex colours of every draw vertex, from ctx.lights and the radiosity emitters ctx.bounceLights.
 void lightVertexes(LightContext& ctx, Log& log);
-// The legacy light grid (lump 15); returns the grid size written back to worldspawn when it grew.
-void lightGrid(LightContext& ctx, Log& log);
+// Where the legacy grid's points sit: its layout, and each lattice point as q3map2 places it
+// (nudged out of solid by the C library sequence light creation left in ctx.random; nullopt when
+// every nudge stays in solid). Reads only the BSP's tree, entities and that sequence, so it may
+// run while the lightmaps are lit.
+struct GridPlacement {
+    GridLayout layout;
+    std::vector<std::optional<PlacedGridPoint>> points;  // lattice order
+};
+GridPlacement placeLightGrid(const LightContext& ctx);
+// The legacy light grid (lump 15), from `placed` (placeLightGrid's, made here when null); writes
+// the grid size back to worldspawn when it grew.
+void lightGrid(LightContext& ctx, Log& log, const GridPlacement* placed = nullptr);
 // Worldspawn gains _q3map2_cmdline / _q3map2_version; the BSP is written atomically.
 void writeLitBsp(LightContext& ctx, Log& log);
 // Seams for the later stages: SH grid (SetupGridSH / TraceGridSH), bounce, dirt and deluxe maps

@@ -27,24 +27,35 @@ GridOptions gridOptionsFromContext(const LightContext& ctx) {
 
 }  // namespace
 
-void lightGrid(LightContext& ctx, Log& log) {
-    bsp::Entity* worldspawn = ctx.entities.empty() ? nullptr : &ctx.entities[0];
+GridPlacement placeLightGrid(const LightContext& ctx) {
+    const bsp::Entity* worldspawn = ctx.entities.empty() ? nullptr : &ctx.entities[0];
     const std::string gridSizeValue = worldspawn ? worldspawn->value("gridsize") : std::string();
-    const Vec3 requested = parseGridSize(gridSizeValue, ctx.bspPath.string() + ": worldspawn \"gridsize\"");
-    const GridLayout layout = computeGridLayout(requested, ctx.bsp);
+    GridPlacement out;
+    out.layout = computeGridLayout(
+        parseGridSize(gridSizeValue, ctx.bspPath.string() + ": worldspawn \"gridsize\""), ctx.bsp);
+    // Points are placed one after another in index order, as q3map2's TraceGrid places them on one
+    // thread: a point in solid takes the first free one of its random nudges, whose values
+    // continue the sequence light creation drew from (placeGridAsTraceGrid).
+    const GridLayout& layout = out.layout;
+    out.points = placeGridAsTraceGrid(ctx.tree.get(), ctx.bsp, GridLattice{layout.bounds, layout.mins, layout.size},
+                                      ctx.random, ctx.threads);
+    return out;
+}
+
+void lightGrid(LightContext& ctx, Log& log, const GridPlacement* placed) {
+    bsp::Entity* worldspawn = ctx.entities.empty() ? nullptr : &ctx.entities[0];
+    const GridPlacement own = placed ? GridPlacement{} : placeLightGrid(ctx);
+    if (!placed) placed = &own;
+    const GridLayout& layout = placed->layout;
     if (layout.growSteps > 0)
         log.info(strCat("grid size grown to ", layout.sizeKeyValue(), " to stay within ", kMaxGridPoints, " points"));
 
     const int numPoints = layout.numPoints();
     const GridOptions gridOptions = gridOptionsFromContext(ctx);
     const LightingEnv env = gridLightingEnv(ctx, layout.size);
-    // Points are placed first, one after another in index order, as q3map2's TraceGrid places them
-    // on one thread: a point in solid takes the first free one of its random nudges, whose values
-    // continue the sequence light creation drew from (placeGridAsTraceGrid). The nudges reach
-    // half a cell along each axis at most.
+    // The nudges reach half a cell along each axis at most.
     const float nudgeRadius = length(layout.size * 0.5f);
-    const std::vector<std::optional<PlacedGridPoint>> placements = placeGridAsTraceGrid(
-        ctx.tree.get(), ctx.bsp, GridLattice{layout.bounds, layout.mins, layout.size}, ctx.random, ctx.threads);
+    const std::vector<std::optional<PlacedGridPoint>>& placements = placed->points;
     const std::vector<float> envelopes = lightEnvelopes(ctx.lights, env.settings.forceFast);
     std::vector<bsp::GridPoint> points(static_cast<size_t>(std::max(0, numPoints)));
     std::vector<uint8_t> inSolid(points.size(), 0);

@@ -1,5 +1,6 @@
 #include "dirt.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -46,8 +47,9 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
     tangentFrame(normal, right, up);
     const float depth = settings.depth;
     const std::vector<Vec3>& cone = dirtConeDirections();
-    std::vector<Vec3> directions;
-    directions.reserve(cone.size() + 1);
+    constexpr size_t kMaxRays = size_t(kDirtAzimuthSteps * kDirtElevationSteps) + 1;
+    std::array<Vec3, kMaxRays> directions;
+    size_t count = 0;
     if (settings.mode == 1) {
         SplitMix random(seed);
         for (size_t i = 0; i < cone.size(); ++i) {
@@ -55,26 +57,61 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
             const float elevation = random.unit() * degToRad(kDirtConeDegrees);
             const Vec3 local{std::cos(azimuth) * std::sin(elevation), std::sin(azimuth) * std::sin(elevation),
                              std::cos(elevation)};
-            directions.push_back(toFrame(local, right, up, normal));
+            directions[count++] = toFrame(local, right, up, normal);
         }
     } else {
-        for (const Vec3& local : cone) directions.push_back(toFrame(local, right, up, normal));
+        for (const Vec3& local : cone) directions[count++] = toFrame(local, right, up, normal);
     }
-    directions.push_back(normal);
-    std::vector<RayHit> hits(directions.size());
-    scene.nearestMany(origin, directions, ignoreNear, depth, hits);
+    directions[count++] = normal;
+
+    // A ray that enters structural solid stops where it enters, however close (the inhibit radius
+    // only skips surfaces), and before any nearer detail surface it may cross. So the solid is
+    // walked first; the nearest surface matters to such a ray only when it is a sky face no farther
+    // than the entry (sky faces seal the world with solid behind them: rays that reach sky do not
+    // darken), which the sky surfaces alone can rule out.
+    std::array<float, kMaxRays> entry;  // distance to the solid, or -1
+    entry.fill(-1.0f);
+    std::array<Vec3, kMaxRays> solidDirections;
+    std::array<float, kMaxRays> skyReach;
+    std::array<size_t, kMaxRays> solidRay;
+    size_t solidCount = 0;
+    std::array<std::optional<Vec3>, kMaxRays> solids;
+    if (tree) tree->segmentSolidEntries(origin, std::span(directions.data(), count), depth, solids);
+    for (size_t i = 0; i < count; ++i)
+        if (const std::optional<Vec3>& solid = solids[i]) {
+            entry[i] = length(*solid - origin);
+            solidDirections[solidCount] = directions[i];
+            // A little past the entry and its slack: a sky face beyond it only costs a nearest query.
+            skyReach[solidCount] = (entry[i] + kSkyEntrySlack) * 1.001f + 0.01f;
+            solidRay[solidCount++] = i;
+        }
+    std::array<uint8_t, kMaxRays> skyBeforeSolid{};
+    std::array<uint8_t, kMaxRays> needsNearest{};
+    if (solidCount > 0) {
+        scene.skyAlongMany(origin, std::span(solidDirections.data(), solidCount), ignoreNear,
+                           std::span(skyReach.data(), solidCount), std::span(skyBeforeSolid.data(), solidCount));
+        for (size_t k = 0; k < solidCount; ++k) needsNearest[solidRay[k]] = skyBeforeSolid[k];
+    }
+    std::array<Vec3, kMaxRays> queried;
+    std::array<size_t, kMaxRays> queriedRay;
+    size_t queriedCount = 0;
+    for (size_t i = 0; i < count; ++i)
+        if (entry[i] < 0 || needsNearest[i]) {
+            queried[queriedCount] = directions[i];
+            queriedRay[queriedCount++] = i;
+        }
+    std::array<RayHit, kMaxRays> hits{};
+    std::array<RayHit, kMaxRays> queriedHits;
+    scene.nearestMany(origin, std::span(queried.data(), queriedCount), ignoreNear, depth,
+                      std::span(queriedHits.data(), queriedCount));
+    for (size_t k = 0; k < queriedCount; ++k) hits[queriedRay[k]] = queriedHits[k];
+
     float gathered = 0;
-    for (size_t i = 0; i < hits.size(); ++i) {
+    for (size_t i = 0; i < count; ++i) {
         const RayHit& hit = hits[i];
-        // A ray that enters structural solid stops where it enters, however close (the inhibit
-        // radius only skips surfaces), and before any nearer detail surface it may cross.
-        std::optional<Vec3> solid;
-        if (tree) solid = tree->segmentSolidEntry(origin, origin + directions[i] * depth);
-        if (solid) {
-            const float distance = length(*solid - origin);
-            // Sky faces seal the world with solid behind them: rays that reach sky do not darken.
-            const bool sky = hit.hit && hit.sky && hit.distance <= distance + kSkyEntrySlack;
-            if (!sky) gathered += 1.0f - distance / depth;
+        if (entry[i] >= 0) {
+            const bool sky = hit.hit && hit.sky && hit.distance <= entry[i] + kSkyEntrySlack;
+            if (!sky) gathered += 1.0f - entry[i] / depth;
         } else if (hit.hit && !hit.sky) {
             gathered += 1.0f - hit.distance / depth;
         }

@@ -109,6 +109,21 @@ std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
     return segmentTree_.entry(from, to);
 }
 
+void BspTree::segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, float length,
+                                  std::span<std::optional<Vec3>> out) const {
+    // The ends lie within `length` of `from` but for the rounding of from + direction * length
+    // (and of a direction's unit length): a slightly larger ball holds them all.
+    const float radius = length * 1.001f + 0.01f;
+    const bool shared = !bsp_.nodes.empty() && !compact_.empty() && std::isfinite(radius) &&
+                        withinWalkRange(from - Vec3::splat(radius), from + Vec3::splat(radius));
+    const int32_t start = shared ? segmentTree_.sharedStart(from, radius) : 0;
+    for (size_t i = 0; i < directions.size() && i < out.size(); ++i) {
+        const Vec3 to = from + directions[i] * length;
+        out[i] = shared && withinWalkRange(from, to) ? segmentTree_.entryFrom(start, from, to)
+                                                     : segmentSolidEntry(from, to);
+    }
+}
+
 // The reference walk, near side first, so that the first solid leaf it meets is where the segment
 // enters solid.
 std::optional<Vec3> BspTree::referenceSegmentSolidEntry(Vec3 from, Vec3 to) const {

@@ -70,6 +70,10 @@ public:
     // Where the same walk first enters such a leaf (the start of the segment's part inside it; the
     // hit point q3map2's dirt and floodlight rays measure), nullopt when it enters none.
     std::optional<Vec3> segmentSolidEntry(Vec3 from, Vec3 to) const;
+    // segmentSolidEntry of each segment from `from` along directions[i] (unit) for `length`
+    // (out[i]); the walks share the descent their segments have in common.
+    void segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, float length,
+                             std::span<std::optional<Vec3>> out) const;
     // True when no segment between two points of the convex hull of `points` can cross solid as
     // segmentCrossesSolid walks it (margins cover the rounding of the walk's split points), so a
     // batch of rays inside that hull needs no walk of its own. False when some may, or when the

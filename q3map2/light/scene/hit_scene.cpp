@@ -12,42 +12,60 @@ namespace q3::light {
 struct HitScene::EmbreeState {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
+    RTCScene skyScene = nullptr;  // the sky surfaces again, on their own
 };
+
+namespace {
+RTCScene newScene(RTCDevice device) {
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    return scene;
+}
+
+// Attaches the triangles of `s` to `scene` as one geometry; returns its id.
+unsigned attachSurface(RTCDevice device, RTCScene scene, const SceneSurface& s) {
+    const size_t numVerts = s.xyz.size();
+    const size_t numTris = s.triangles.size() / 3;
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), numVerts));
+    for (size_t i = 0; i < numVerts; ++i) s.xyz[i].toArray(vb + i * 3);
+    auto* ib = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), numTris));
+    for (size_t i = 0; i < numTris * 3; ++i) ib[i] = s.triangles[i] < numVerts ? s.triangles[i] : 0u;
+    rtcCommitGeometry(geom);
+    const unsigned id = rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    return id;
+}
+}  // namespace
 
 HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
     : embree_(std::make_unique<EmbreeState>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
-    embree_->scene = rtcNewScene(embree_->device);
-    rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
+    embree_->scene = newScene(embree_->device);
+    embree_->skyScene = newScene(embree_->device);
     for (const SceneSurface& s : surfaces) {
         if (!TraceScene::castsShadow(s, options)) continue;
         const LightingShader* sh = s.shader;
         const bool sky = sh && sh->sky;
         if (!sky && sh && (sh->alphaShadow || sh->lightFilter)) continue;  // filters never stop these rays
-        const size_t numVerts = s.xyz.size();
-        const size_t numTris = s.triangles.size() / 3;
-        RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vb = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), numVerts));
-        for (size_t i = 0; i < numVerts; ++i) s.xyz[i].toArray(vb + i * 3);
-        auto* ib = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), numTris));
-        for (size_t i = 0; i < numTris * 3; ++i) ib[i] = s.triangles[i] < numVerts ? s.triangles[i] : 0u;
-        rtcCommitGeometry(geom);
-        const unsigned id = rtcAttachGeometry(embree_->scene, geom);
-        rtcReleaseGeometry(geom);
+        const unsigned id = attachSurface(embree_->device, embree_->scene, s);
         if (skyGeometry_.size() <= id) skyGeometry_.resize(id + 1, 0);
         skyGeometry_[id] = sky ? 1 : 0;
+        if (sky) attachSurface(embree_->device, embree_->skyScene, s);
     }
     rtcCommitScene(embree_->scene);
+    rtcCommitScene(embree_->skyScene);
     if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
         throw CompileError("embree: building the nearest-hit scene failed");
 }
 
 HitScene::~HitScene() {
     if (embree_->scene) rtcReleaseScene(embree_->scene);
+    if (embree_->skyScene) rtcReleaseScene(embree_->skyScene);
     if (embree_->device) rtcReleaseDevice(embree_->device);
 }
 
@@ -98,6 +116,22 @@ void HitScene::nearestMany(Vec3 from, std::span<const Vec3> directions, float tn
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         rtcIntersect1M(embree_->scene, &context, rays, static_cast<unsigned>(n), sizeof(RTCRayHit));
         for (size_t i = 0; i < n && start + i < out.size(); ++i) out[start + i] = toRayHit(rays[i], skyGeometry_);
+    }
+}
+
+void HitScene::skyAlongMany(Vec3 from, std::span<const Vec3> directions, float tnear, std::span<const float> tfars,
+                            std::span<uint8_t> out) const {
+    constexpr size_t kChunk = 64;
+    RTCRay rays[kChunk];
+    for (size_t start = 0; start < directions.size(); start += kChunk) {
+        const size_t n = std::min(kChunk, directions.size() - start);
+        for (size_t i = 0; i < n; ++i) rays[i] = makeRayHit(from, directions[start + i], tnear, tfars[start + i]).ray;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcOccluded1M(embree_->skyScene, &context, rays, static_cast<unsigned>(n), sizeof(RTCRay));
+        // An occluded ray comes back with tfar = -inf.
+        for (size_t i = 0; i < n && start + i < out.size(); ++i) out[start + i] = rays[i].tfar < 0 ? 1 : 0;
     }
 }
 

@@ -33,6 +33,10 @@ public:
     // Embree ray stream; each result equals what nearest() gives for that direction.
     void nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
                      std::span<RayHit> out) const;
+    // Whether a sky surface lies along each direction between tnear and tfars[i] (out[i] = 1),
+    // whatever lies nearer: a query on the sky surfaces alone, far fewer than the whole world.
+    void skyAlongMany(Vec3 from, std::span<const Vec3> directions, float tnear, std::span<const float> tfars,
+                      std::span<uint8_t> out) const;
 
 private:
     struct EmbreeState;

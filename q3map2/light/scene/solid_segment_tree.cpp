@@ -86,7 +86,27 @@ SolidSegmentTree::SolidSegmentTree(const bsp::Bsp& bsp, std::span<const uint8_t>
             [&](int32_t child) { return childKind(child) == kHasSolid ? kSolidSubtree : kOpenSubtree; });
 }
 
-std::optional<Vec3> SolidSegmentTree::entry(Vec3 from, Vec3 to) const {
+int32_t SolidSegmentTree::sharedStart(Vec3 center, float radius) const {
+    // A node's step keeps both ends on one side when both lie beyond the on-plane epsilon on it
+    // (segmentStep): a ball whose centre lies farther than its radius plus that epsilon qualifies.
+    constexpr double kOnEpsilon = 0.1;  // as segmentStep
+    const double reach = double(radius) + kOnEpsilon;
+    const WalkPoint c(center);
+    int32_t node = root_;
+    while (node >= 0) {
+        const CompactNode& n = nodes_[size_t(node)];
+        const double d = nodeDistance(n, c);
+        if (d > reach)
+            node = n.children[0];
+        else if (d < -reach)
+            node = n.children[1];
+        else
+            break;
+    }
+    return node;
+}
+
+std::optional<Vec3> SolidSegmentTree::entryFrom(int32_t root, Vec3 from, Vec3 to) const {
     // Far sides still to walk. A push happens at most once per node of the current path, so the
     // validated depth bounds the stack. The near side of every split is walked first and keeps the
     // part's start, so the first stopping leaf reached is where the segment enters one, and a whole
@@ -98,7 +118,7 @@ std::optional<Vec3> SolidSegmentTree::entry(Vec3 from, Vec3 to) const {
     };
     Pending stack[kMaxCompactDepth];
     int top = 0;
-    int32_t node = root_;
+    int32_t node = root;
     Vec3 start = from, end = to;
     WalkPoint s(start), e(end);
     while (true) {

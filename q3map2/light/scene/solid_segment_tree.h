@@ -96,7 +96,12 @@ public:
     bool crosses(Vec3 from, Vec3 to) const { return entry(from, to).has_value(); }
     // Where the walk (near side first) first reaches a stopping leaf: the start of the segment's part
     // in it, the point the plain recursive walk returns. Same requirements as crosses().
-    std::optional<Vec3> entry(Vec3 from, Vec3 to) const;
+    std::optional<Vec3> entry(Vec3 from, Vec3 to) const { return entryFrom(root_, from, to); }
+    // Where walks of segments that stay within `radius` of `center` part: every node above it sends
+    // all of them to the same side. Walks from there (entryFrom) end where walks from the root do.
+    int32_t sharedStart(Vec3 center, float radius) const;
+    // entry() begun at `node` (root or a sharedStart() whose ball holds the segment).
+    std::optional<Vec3> entryFrom(int32_t node, Vec3 from, Vec3 to) const;
     // True when no segment between two points of the convex hull of `points` can reach a stopping
     // leaf as crosses() walks it (margins cover the rounding of the walk's split points), so a
     // batch of rays inside that hull needs no walk of its own. False when some may, when the tree

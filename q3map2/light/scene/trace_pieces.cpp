@@ -5,6 +5,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -21,8 +22,38 @@ struct TraceVert {
     float s = 0, t = 0;
 };
 
+// A winding's corners: a few on the spot (a triangle gains one corner per cut, so nearly every
+// piece fits), more on the heap. Clipping runs for every cut of every caster, and heap corners
+// made the allocator its largest cost.
+class Corners {
+public:
+    size_t size() const { return size_; }
+    void clear() {
+        size_ = 0;
+        heap_.clear();
+    }
+    void push_back(const TraceVert& v) {
+        if (size_ < kInline) {
+            inline_[size_++] = v;
+            return;
+        }
+        if (size_ == kInline) heap_.assign(inline_.begin(), inline_.end());
+        heap_.push_back(v);
+        ++size_;
+    }
+    const TraceVert* begin() const { return size_ <= kInline ? inline_.data() : heap_.data(); }
+    const TraceVert* end() const { return begin() + size_; }
+    const TraceVert& operator[](size_t i) const { return begin()[i]; }
+
+private:
+    static constexpr size_t kInline = 12;
+    std::array<TraceVert, kInline> inline_;
+    size_t size_ = 0;
+    std::vector<TraceVert> heap_;  // every corner, once there are more than kInline
+};
+
 struct Winding {
-    std::vector<TraceVert> v;
+    Corners v;
     size_t surface = 0;  // index into the input surfaces
 };
 
@@ -297,19 +328,27 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
             for (size_t l = r.begin(); l != r.end(); ++l) subdivide(l);
         });
     });
-    auto emit = [&](const Winding& w) {
-        const SceneSurface& s = surfaces[w.surface];
-        const bool exact = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !s.shader->sky;
-        appendPieces(w, exact, out[w.surface]);
-    };
+    // Each surface's pieces in the order the sequential emission gives (direct windings exist only
+    // without a tree, emitted ones only with one), fanned out surface by surface in parallel.
+    std::vector<std::vector<const Winding*>> bySurface(surfaces.size());
     for (const std::vector<Winding>& list : direct)
-        for (const Winding& w : list) emit(w);
+        for (const Winding& w : list) bySurface[w.surface].push_back(&w);
+    for (const std::vector<Winding>& list : emitted)
+        for (const Winding& w : list) bySurface[w.surface].push_back(&w);
+    auto fan = [&](size_t i) {
+        const SceneSurface& s = surfaces[i];
+        const bool exact = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !s.shader->sky;
+        for (const Winding* w : bySurface[i]) appendPieces(*w, exact, out[i]);
+    };
+    tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) fan(i);
+        });
+    });
     if (contents) {
         contents->holdsPieces = std::move(holdsPieces);
         contents->subdivided = std::move(subdivided);
     }
-    for (const std::vector<Winding>& list : emitted)
-        for (const Winding& w : list) emit(w);
     return out;
 }
 
