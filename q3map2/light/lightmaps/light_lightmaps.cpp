@@ -6,6 +6,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "bounce_passes.h"
@@ -93,6 +94,41 @@ LightmapGroups lightmapGroups(const LightContext& ctx, std::span<const int> surf
     return out;
 }
 
+// About how many luxels a group of surfaces takes: their area (a patch's control mesh stands in
+// for its curve) over the square of their sample size. Only the order of the work follows it.
+double estimatedLuxels(const LightContext& ctx, std::span<const int> group) {
+    const bsp::Bsp& bsp = ctx.bsp;
+    auto corner = [&](int64_t v) {
+        return v >= 0 && size_t(v) < bsp.drawVerts.size() ? Vec3::fromArray(bsp.drawVerts[size_t(v)].xyz) : Vec3{};
+    };
+    auto area = [&](int64_t a, int64_t b, int64_t c) {
+        return 0.5 * double(length(cross(corner(b) - corner(a), corner(c) - corner(a))));
+    };
+    double total = 0;
+    for (const int surfaceNum : group) {
+        const bsp::Surface& s = bsp.surfaces[size_t(surfaceNum)];
+        double surfaceArea = 0;
+        if (s.surfaceType == bsp::MST_PATCH) {
+            for (int y = 0; y + 1 < s.patchHeight; ++y)
+                for (int x = 0; x + 1 < s.patchWidth; ++x) {
+                    const int64_t v = int64_t(s.firstVert) + int64_t(y) * s.patchWidth + x;
+                    surfaceArea += area(v, v + 1, v + s.patchWidth) + area(v + 1, v + s.patchWidth + 1, v + s.patchWidth);
+                }
+        } else {
+            for (int i = 0; i + 2 < s.numIndexes; i += 3) {
+                const int64_t first = int64_t(s.firstIndex) + i;
+                if (first < 0 || size_t(first) + 2 >= bsp.drawIndexes.size()) break;
+                const int64_t base = s.firstVert;
+                surfaceArea += area(base + bsp.drawIndexes[size_t(first)], base + bsp.drawIndexes[size_t(first) + 1],
+                                    base + bsp.drawIndexes[size_t(first) + 2]);
+            }
+        }
+        const double sampleSize = ctx.extras.loaded ? std::max(1, ctx.extras.forSurface(surfaceNum).sampleSize) : 16.0;
+        total += surfaceArea / (sampleSize * sampleSize);
+    }
+    return total;
+}
+
 // Lights every raw lightmap (a group of surfaces) for one pass, in parallel, one slot each.
 std::vector<SurfaceLight> lightPass(const LightContext& ctx, const std::vector<std::vector<int>>& surfaces,
                                     const LayoutOptions& layoutOptions, const LuxelPasses* passes,
@@ -105,14 +141,23 @@ std::vector<SurfaceLight> lightPass(const LightContext& ctx, const std::vector<s
     withEnvelopes.reach = &reach;
     std::vector<SurfaceLight> results(surfaces.size());
     Progress progress = Progress::forConsole(log, surfaces.size());
-    auto body = [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t k = range.begin(); k != range.end(); ++k) {
-            results[k] = lightSurface(ctx, env, surfaces[k], layoutOptions, passes, withEnvelopes);
+    // Largest first, each thread taking the next one as it finishes: a large lightmap taken last
+    // would keep one core busy long after the others are done. Each result has its own slot, so
+    // the order changes nothing but the time.
+    std::vector<double> cost(surfaces.size());
+    for (size_t k = 0; k < surfaces.size(); ++k) cost[k] = estimatedLuxels(ctx, surfaces[k]);
+    std::vector<size_t> order(surfaces.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost[a] > cost[b]; });
+    std::atomic<size_t> next{0};
+    auto worker = [&](int) {
+        for (size_t k = next++; k < order.size(); k = next++) {
+            results[order[k]] = lightSurface(ctx, env, surfaces[order[k]], layoutOptions, passes, withEnvelopes);
             progress.advance();
         }
     };
     tbb::task_arena arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 1), body); });
+    arena.execute([&] { tbb::parallel_for(0, arena.max_concurrency(), worker); });
     progress.finish();
     return results;
 }

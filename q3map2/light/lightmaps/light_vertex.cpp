@@ -144,15 +144,26 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 // Traced vertexes first; those whose every position was in solid take the mean of
                 // the lit ones (the pass's ambient light when none is).
                 std::vector<std::optional<Vec3>> traced(lit.size());
+                auto traceRange = [&](const tbb::blocked_range<int>& vertexes) {
+                    for (int v = vertexes.begin(); v != vertexes.end(); ++v) {
+                        const size_t vi = static_cast<size_t>(s.firstVert + v);
+                        if (ctx.vertexFromLightmap[vi]) continue;
+                        const bsp::DrawVert& dv = bsp.drawVerts[vi];
+                        const Vec3 normal = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
+                                                                                    : Vec3::fromArray(dv.normal));
+                        traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
+                    }
+                };
+                // A surface of many vertexes (a large soup or terrain) would otherwise keep one core
+                // busy after the others have finished: its vertexes are traced in parallel too.
+                constexpr int kVertexGrain = 32;
+                if (s.numVerts > 2 * kVertexGrain)
+                    tbb::parallel_for(tbb::blocked_range<int>(0, s.numVerts, kVertexGrain), traceRange);
+                else
+                    traceRange(tbb::blocked_range<int>(0, std::max(0, s.numVerts)));
                 Vec3 litSum;
                 int litCount = 0;
                 for (int v = 0; v < s.numVerts; ++v) {
-                    const size_t vi = static_cast<size_t>(s.firstVert + v);
-                    if (ctx.vertexFromLightmap[vi]) continue;
-                    const bsp::DrawVert& dv = bsp.drawVerts[vi];
-                    const Vec3 normal = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
-                                                                                : Vec3::fromArray(dv.normal));
-                    traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
                     if (traced[size_t(v)] && brighterThan(*traced[size_t(v)], ambient)) {
                         litSum += *traced[size_t(v)];
                         ++litCount;

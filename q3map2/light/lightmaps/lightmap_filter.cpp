@@ -12,11 +12,37 @@ int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool f
     return luxels;
 }
 
-LuxelImage boxFilterLuxels(const LuxelImage& light, int radius) {
+LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonzero) {
+    if (nonzero) *nonzero = LuxelRect{0, light.width - 1, 0, light.height - 1};
     if (radius <= 0) return light;
     LuxelImage out = light;
-    for (int y = 0; y < light.height; ++y) {
+    // Only lit Mapped luxels feed the means: a luxel whose square holds none keeps its zero, so
+    // only the rectangle around them, grown by the radius, needs filtering (a light usually
+    // reaches a corner of a large lightmap, and this runs once a light).
+    LuxelRect lit, any;
+    auto grow = [](LuxelRect& r, int x, int y) {
+        if (r.x1 < r.x0) {
+            r = LuxelRect{x, x, y, y};
+            return;
+        }
+        r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x), r.y0 = std::min(r.y0, y), r.y1 = std::max(r.y1, y);
+    };
+    for (int y = 0; y < light.height; ++y)
         for (int x = 0; x < light.width; ++x) {
+            const size_t i = light.index(x, y);
+            if (light.color[i] == Vec3{}) continue;
+            grow(any, x, y);
+            if (light.state[i] == LuxelState::Mapped) grow(lit, x, y);
+        }
+    if (lit.x1 >= lit.x0) {
+        lit = LuxelRect{std::max(0, lit.x0 - radius), std::min(light.width - 1, lit.x1 + radius),
+                        std::max(0, lit.y0 - radius), std::min(light.height - 1, lit.y1 + radius)};
+        grow(any, lit.x0, lit.y0);
+        grow(any, lit.x1, lit.y1);
+    }
+    if (nonzero) *nonzero = any;
+    for (int y = lit.y0; y <= lit.y1; ++y) {
+        for (int x = lit.x0; x <= lit.x1; ++x) {
             if (light.state[light.index(x, y)] != LuxelState::Mapped) continue;
             Vec3 sum;
             float weightSum = 0.0f;

@@ -34,10 +34,17 @@ struct LuxelImage {
 // q3map_lightmapFilterRadius and the light's _filterradius (negative counts as 0).
 int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool filterOption);
 
+// A rectangle of luxels, [x0, x1] x [y0, y1]; empty when x1 < x0.
+struct LuxelRect {
+    int x0 = 0, x1 = -1, y0 = 0, y1 = -1;
+};
+
 // q3map2's per-light filter: every Mapped luxel becomes the weighted mean of the Mapped luxels in the
 // (2r+1)^2 square around it, weight 1 inside and 0.5 per axis on the square's border. Other luxels
-// are left unchanged. radius <= 0 returns the input.
-LuxelImage boxFilterLuxels(const LuxelImage& light, int radius);
+// are left unchanged. radius <= 0 returns the input. Only the rectangle around the lit Mapped
+// luxels is visited: elsewhere every mean is of zeros. `nonzero`, when given, receives a rectangle
+// outside which every luxel of the result is zero.
+LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonzero = nullptr);
 
 // The final neighbour fill: each Unmapped or Occluded luxel (and, with splotchFix, each luxel with a
 // channel at or below the ambient) takes the mean of its Mapped 3x3 neighbours (neighbours equal to

@@ -617,9 +617,13 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
         if (!any && maxLevel == 0) continue;
         // q3map2 skips sub-sampling where the light is filtered (it would be smoothed away).
         if (maxLevel > 0 && radius == 0) refineEdges(sampler, lt, points, w, h, o.lightSamples, single.color);
-        const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius) : single;
-        for (size_t i = 0; i < points.size(); ++i)
-            if (points[i]) {
+        // Outside `changed` the light adds zeros, which leave the sums as they are.
+        LuxelRect changed{0, w - 1, 0, h - 1};
+        const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius, &changed) : single;
+        for (int y = changed.y0; y <= changed.y1; ++y)
+            for (int x = changed.x0; x <= changed.x1; ++x) {
+                const size_t i = size_t(y) * size_t(w) + size_t(x);
+                if (!points[i]) continue;
                 target.color[i] += add.color[i];
                 if (withDirs) light.directions[i] += singleDirs[i] * brightness(add.color[i]);
             }

@@ -1,6 +1,7 @@
 #include "bsp_tree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <tuple>
@@ -117,6 +118,17 @@ void BspTree::segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, f
     const bool shared = !bsp_.nodes.empty() && !compact_.empty() && std::isfinite(radius) &&
                         withinWalkRange(from - Vec3::splat(radius), from + Vec3::splat(radius));
     const int32_t start = shared ? segmentTree_.sharedStart(from, radius) : 0;
+    if (shared && directions.size() <= kMaxFanRays) {
+        // Every segment joins two points of the fan's hull: when no walk inside it can meet solid,
+        // none of theirs does (a sample in open space skips all its walks at once).
+        std::array<Vec3, kMaxFanRays + 1> hull;
+        hull[0] = from;
+        for (size_t i = 0; i < directions.size(); ++i) hull[i + 1] = from + directions[i] * length;
+        if (segmentTree_.hullClear(std::span(hull.data(), directions.size() + 1))) {
+            for (size_t i = 0; i < directions.size() && i < out.size(); ++i) out[i] = std::nullopt;
+            return;
+        }
+    }
     for (size_t i = 0; i < directions.size() && i < out.size(); ++i) {
         const Vec3 to = from + directions[i] * length;
         out[i] = shared && withinWalkRange(from, to) ? segmentTree_.entryFrom(start, from, to)

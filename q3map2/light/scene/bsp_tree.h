@@ -71,7 +71,9 @@ public:
     // hit point q3map2's dirt and floodlight rays measure), nullopt when it enters none.
     std::optional<Vec3> segmentSolidEntry(Vec3 from, Vec3 to) const;
     // segmentSolidEntry of each segment from `from` along directions[i] (unit) for `length`
-    // (out[i]); the walks share the descent their segments have in common.
+    // (out[i]); the walks share the descent their segments have in common, and a fan of at most
+    // kMaxFanRays whose hull is clear of solid takes no walk at all.
+    static constexpr size_t kMaxFanRays = 64;
     void segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, float length,
                              std::span<std::optional<Vec3>> out) const;
     // True when no segment between two points of the convex hull of `points` can cross solid as
