@@ -64,6 +64,9 @@ Shot shootThird(const fs::path& ioq3, const fs::path& bsp, const std::string& vi
                                                                      : "ioq3:set r_drawentities 0"};
     // No blob shadow: it darkens the floor around the feet, which the model mask would take in.
     options.insert(options.end(), {"-x", "ioq3:set cg_shadows 0"});
+    // Every frame advances the game by the same 33 ms: the model's idle pose at the shot then
+    // follows the frame count, not how fast the machine renders (a slow frame moved it on).
+    options.insert(options.end(), {"-x", "ioq3:set fixedtime 33"});
     for (const std::string& line : extraLines) options.insert(options.end(), {"-x", "ioq3:" + line});
     const fs::path prefix = dir / name;
     const fs::path logDir = dir / (std::string(name) + "-logs");
