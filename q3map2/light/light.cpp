@@ -83,7 +83,7 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
     });
     if (!mapLightsLine.empty()) log.info(mapLightsLine);
 
-    ctx.shaders = resolveLightingShaders(ctx.bsp, *ctx.shaderTable, ctx.vfs.get(), log);
+    ctx.shaders = resolveLightingShaders(ctx.bsp, *ctx.shaderTable, ctx.vfs.get(), log, ctx.threads);
     if (ctx.shaders.missingImages > 0)
         log.info(strCat(ctx.shaders.missingImages, " shaders without a light image"));
     ctx.scales = lightScalesFromOptions(ctx.options);

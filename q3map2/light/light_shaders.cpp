@@ -1,6 +1,9 @@
 // ShaderInfo -> LightingShader, with light images loaded once per name (see light_shaders.h).
 #include "light_shaders.h"
 
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+
 #include <algorithm>
 #include <cstring>
 
@@ -39,20 +42,70 @@ void applyBspFlags(LightingShader& s, const bsp::Shader& record) {
     s.fog = s.fog || (cont & q3::contents::Fog);
 }
 
-// The image of that name from the cache, loading it on first use; null when it does not exist.
-const LightImage* cachedImage(LightingShaderSet& set, const Vfs& vfs, const std::string& name, Log& log) {
-    auto it = set.images.find(name);
-    if (it != set.images.end()) return it->second.get();
-    std::unique_ptr<LightImage> loaded;
+// One image read ahead of its first use: the image (null when it does not exist) and the warning
+// its load gave, logged only when the image is first used, where a sequential load would log it.
+struct ReadAhead {
+    std::unique_ptr<LightImage> image;
+    std::string warning;
+};
+
+ReadAhead readImage(const Vfs& vfs, const std::string& name) {
+    ReadAhead out;
     try {
         if (std::optional<LoadedImage> li = loadImage(vfs, name))
-            loaded = std::make_unique<LightImage>(toLightImage(li->image));
+            out.image = std::make_unique<LightImage>(toLightImage(li->image));
     } catch (const std::exception& e) {
-        log.warning(e.what());
+        out.warning = e.what();
     }
-    const LightImage* image = loaded.get();
-    set.images.emplace(name, std::move(loaded));
+    return out;
+}
+
+// The image of that name from the cache, taking it from `ahead` or loading it on first use; null
+// when it does not exist.
+const LightImage* cachedImage(LightingShaderSet& set, std::map<std::string, ReadAhead>& ahead, const Vfs& vfs,
+                              const std::string& name, Log& log) {
+    auto it = set.images.find(name);
+    if (it != set.images.end()) return it->second.get();
+    const auto early = ahead.find(name);
+    ReadAhead loaded = early != ahead.end() ? std::move(early->second) : readImage(vfs, name);
+    if (!loaded.warning.empty()) log.warning(loaded.warning);
+    const LightImage* image = loaded.image.get();
+    set.images.emplace(name, std::move(loaded.image));
     return image;
+}
+
+constexpr const char* kSkyBoxSuffixes[6] = {"_lf", "_rt", "_ft", "_bk", "_up", "_dn"};
+
+bool wantsSkyColors(const LightingShader& s) {
+    return std::any_of(s.skyLights.begin(), s.skyLights.end(), [](const SkyLightDirective& d) { return d.sampleColor; });
+}
+
+// The images the shaders will first ask for (each shader's first light image candidate, the sky
+// boxes whose colours sky lights sample), decoded in parallel: a map whose area lights take their
+// colour from their textures decodes dozens of them.
+std::map<std::string, ReadAhead> readImagesAhead(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs& vfs,
+                                                 int threads) {
+    std::vector<std::string> names;
+    for (const bsp::Shader& record : bsp.shaders) {
+        const ShaderInfo& info = table.find(std::string(record.name, strnlen(record.name, sizeof(record.name))));
+        LightingShader probe = toLightingShader(info, nullptr);
+        if (!info.explicitScript) applyBspFlags(probe, record);
+        if (needsImage(probe)) {
+            const std::vector<std::string> candidates = info.lightImageCandidates();
+            if (!candidates.empty()) names.push_back(candidates.front());
+        }
+        if (wantsSkyColors(probe) && !info.skyParmsEnv.empty())
+            for (const char* suffix : kSkyBoxSuffixes) names.push_back(info.skyParmsEnv + suffix);
+    }
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    std::vector<ReadAhead> read(names.size());
+    tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(size_t(0), names.size(), [&](size_t i) { read[i] = readImage(vfs, names[i]); });
+    });
+    std::map<std::string, ReadAhead> out;
+    for (size_t i = 0; i < names.size(); ++i) out.emplace(names[i], std::move(read[i]));
+    return out;
 }
 
 }  // namespace
@@ -117,9 +170,12 @@ LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image)
     return s;
 }
 
-LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log) {
+LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log,
+                                         int threads) {
     LightingShaderSet set;
     set.shaders.reserve(bsp.shaders.size());
+    std::map<std::string, ReadAhead> ahead;
+    if (vfs) ahead = readImagesAhead(bsp, table, *vfs, threads);
     for (const bsp::Shader& record : bsp.shaders) {
         const std::string name(record.name, strnlen(record.name, sizeof(record.name)));
         const ShaderInfo& info = table.find(name);
@@ -129,7 +185,7 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
         const LightImage* image = nullptr;
         if (vfs && needsImage(probe)) {
             for (const std::string& candidate : info.lightImageCandidates()) {
-                image = cachedImage(set, *vfs, candidate, log);
+                image = cachedImage(set, ahead, *vfs, candidate, log);
                 if (image) break;
             }
             if (!image) {
@@ -139,14 +195,11 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
         }
         LightingShader resolved = toLightingShader(info, image);
         if (!info.explicitScript) applyBspFlags(resolved, record);
-        const bool wantsSkyColors = std::any_of(resolved.skyLights.begin(), resolved.skyLights.end(),
-                                                [](const SkyLightDirective& d) { return d.sampleColor; });
-        if (vfs && wantsSkyColors && !info.skyParmsEnv.empty()) {
-            static constexpr const char* kSuffixes[6] = {"_lf", "_rt", "_ft", "_bk", "_up", "_dn"};
+        if (vfs && wantsSkyColors(resolved) && !info.skyParmsEnv.empty()) {
             for (size_t k = 0; k < 6; ++k) {
-                resolved.skyBox[k] = cachedImage(set, *vfs, info.skyParmsEnv + kSuffixes[k], log);
+                resolved.skyBox[k] = cachedImage(set, ahead, *vfs, info.skyParmsEnv + kSkyBoxSuffixes[k], log);
                 if (!resolved.skyBox[k])
-                    log.warning(strCat("shader ", name, ": sky image ", info.skyParmsEnv, kSuffixes[k],
+                    log.warning(strCat("shader ", name, ": sky image ", info.skyParmsEnv, kSkyBoxSuffixes[k],
                                        " not found, sky light keeps the shader colour"));
             }
         }

@@ -30,7 +30,9 @@ LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image)
 
 // One LightingShader per BSP shader. Images are loaded (each once) only for shaders that need them:
 // surface lights without q3map_lightRGB, alpha shadows and light filters. `vfs` may be null (no
-// images). Names come from the BSP shader lump.
-LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log);
+// images). Names come from the BSP shader lump. Images are decoded on `threads` threads (0: one per
+// core); the result and the messages do not depend on their number.
+LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs* vfs, Log& log,
+                                         int threads = 0);
 
 }  // namespace q3::light

@@ -218,7 +218,7 @@ TEST(TraceScene, ClearHullsAndClearRaysSkipTheSolidWalk) {
     options.hullClearOfSolid = [&](std::span<const Vec3> points) {
         ++hulls;
         EXPECT_EQ(points.size() % 2, 0u);
-        return hullAnswer;
+        return HullVerdict{hullAnswer, std::nullopt};
     };
     TraceScene scene(s, options);
     std::vector<ShadowRay> rays;

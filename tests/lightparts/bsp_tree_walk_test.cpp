@@ -205,6 +205,40 @@ TEST(BspTreeWalk, ClearHullsHoldNoSegmentThatCrossesSolid) {
     EXPECT_GT(unclear, 100);
 }
 
+// A hull the walk does not call clear names where the walks of its segments may begin: from there
+// every segment inside it, many of them on or near the generator's planes, meets solid exactly
+// when its walk from the root does.
+TEST(BspTreeWalk, WalksBegunWhereTheHullPartsMatchWalksFromTheRoot) {
+    int deeper = 0, crossing = 0, open = 0;
+    for (uint32_t seed = 1; seed <= 8; ++seed) {
+        RandomTree t(seed);
+        const BspTree tree(t.b);
+        const std::vector<Vec3> points = probePoints(t);
+        for (size_t i = 0; i + 1 < points.size(); i += 2) {
+            const float spread = t.uniform(0.0f, 40.0f);
+            const Vec3 a = points[i], b = points[i + 1], aMax = a + Vec3{spread, spread * 0.5f, spread * 0.25f};
+            std::vector<Vec3> corners;
+            for (int c = 0; c < 8; ++c) corners.push_back({(c & 1) ? aMax.x : a.x, (c & 2) ? aMax.y : a.y,
+                                                          (c & 4) ? aMax.z : a.z});
+            corners.push_back(b);
+            const HullVerdict hull = tree.hullWalkOfSolid(corners);
+            if (hull.clear) continue;
+            ASSERT_TRUE(hull.start.has_value());
+            deeper += *hull.start != 0;
+            for (int k = 0; k < 24; ++k) {
+                const Vec3 from = k < 8 ? corners[size_t(k)] : lerp(a, aMax, t.uniform(0, 1));
+                const bool viaStart = tree.segmentCrossesSolidFrom(hull, from, b);
+                ASSERT_EQ(viaStart, tree.segmentCrossesSolid(from, b)) << seed << " " << i << " " << k;
+                (viaStart ? crossing : open) += 1;
+            }
+        }
+    }
+    // Walks begin below the root, and both answers are exercised.
+    EXPECT_GT(deeper, 50);
+    EXPECT_GT(crossing, 500);
+    EXPECT_GT(open, 500);
+}
+
 TEST(BspTreeWalk, HullWalkKeepsTheOnPlaneEpsilon) {
     // Root splits at x = 0: front leaf open, back leaf outside every cluster. A segment whose ends
     // both lie at -0.1 or more stays in front, so a hull just behind the plane is still clear.

@@ -99,9 +99,15 @@ void BspTree::buildCompactTree() {
 
 bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const { return segmentSolidEntry(from, to).has_value(); }
 
-bool BspTree::hullClearOfSolid(std::span<const Vec3> points) const {
-    if (bsp_.nodes.empty()) return true;
-    return segmentTree_.hullClear(points);
+HullVerdict BspTree::hullWalkOfSolid(std::span<const Vec3> points) const {
+    if (bsp_.nodes.empty()) return {true, std::nullopt};
+    return segmentTree_.hullWalk(points);
+}
+
+bool BspTree::segmentCrossesSolidFrom(const HullVerdict& hull, Vec3 from, Vec3 to) const {
+    if (!hull.start || bsp_.nodes.empty() || compact_.empty() || !withinWalkRange(from, to))
+        return segmentCrossesSolid(from, to);
+    return segmentTree_.entryFrom(*hull.start, from, to).has_value();
 }
 
 std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {

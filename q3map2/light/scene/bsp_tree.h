@@ -80,7 +80,12 @@ public:
     // segmentCrossesSolid walks it (margins cover the rounding of the walk's split points), so a
     // batch of rays inside that hull needs no walk of its own. False when some may, or when the
     // answer would take more than a bounded number of nodes.
-    bool hullClearOfSolid(std::span<const Vec3> points) const;
+    bool hullClearOfSolid(std::span<const Vec3> points) const { return hullWalkOfSolid(points).clear; }
+    // hullClearOfSolid's answer, and where the walks of segments inside the hull may begin.
+    HullVerdict hullWalkOfSolid(std::span<const Vec3> points) const;
+    // segmentCrossesSolid of a segment inside a hull that hullWalkOfSolid did not call clear,
+    // begun where the verdict says (the same answer, fewer nodes).
+    bool segmentCrossesSolidFrom(const HullVerdict& hull, Vec3 from, Vec3 to) const;
 
     bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
 

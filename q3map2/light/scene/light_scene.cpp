@@ -186,14 +186,20 @@ void buildScene(LightContext& ctx) {
     options.patchShadows = ctx.options.patchShadows;
     const BspTree* tree = ctx.tree.get();
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
-    options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullClearOfSolid(points); };
+    options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullWalkOfSolid(points); };
+    options.solidBetweenInHull = [tree](const HullVerdict& hull, Vec3 from, Vec3 to) {
+        return tree->segmentCrossesSolidFrom(hull, from, to);
+    };
     // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
     // beside it is stopped (trace_pieces.h). Sun rays meet solid where its walk does.
     TraceLeafContents contents;
     std::vector<SceneSurface> pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents, ctx.threads);
     auto skySolid = std::make_shared<const SkyRaySolid>(ctx.bsp, contents);
     options.skySolidBetween = [skySolid](Vec3 from, Vec3 to) { return skySolid->stops(from, to); };
-    options.skyHullClear = [skySolid](std::span<const Vec3> points) { return skySolid->hullClear(points); };
+    options.skyHullClear = [skySolid](std::span<const Vec3> points) { return skySolid->hullWalk(points); };
+    options.skySolidBetweenInHull = [skySolid](const HullVerdict& hull, Vec3 from, Vec3 to) {
+        return skySolid->stopsFrom(hull, from, to);
+    };
     ctx.scene = std::make_unique<TraceScene>(pieces, options);
 }
 

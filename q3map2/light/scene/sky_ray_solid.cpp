@@ -55,9 +55,15 @@ bool SkyRaySolid::stops(Vec3 from, Vec3 to) const {
     return compact_.crosses(from, to);
 }
 
-bool SkyRaySolid::hullClear(std::span<const Vec3> points) const {
-    if (bsp_.nodes.empty()) return true;
-    return compact_.hullClear(points);
+HullVerdict SkyRaySolid::hullWalk(std::span<const Vec3> points) const {
+    if (bsp_.nodes.empty()) return {true, std::nullopt};
+    return compact_.hullWalk(points);
+}
+
+bool SkyRaySolid::stopsFrom(const HullVerdict& hull, Vec3 from, Vec3 to) const {
+    if (!hull.start || bsp_.nodes.empty() || !compact_.usable() || !withinWalkRange(from, to))
+        return stops(from, to);
+    return compact_.entryFrom(*hull.start, from, to).has_value();
 }
 
 bool SkyRaySolid::stopsByPlainWalk(Vec3 from, Vec3 to) const {

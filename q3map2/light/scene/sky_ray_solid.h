@@ -32,7 +32,11 @@ public:
     bool stops(Vec3 from, Vec3 to) const;
     // True when no segment inside the convex hull of `points` can stop as stops() walks it (see
     // SolidSegmentTree::hullClear); false when unsure.
-    bool hullClear(std::span<const Vec3> points) const;
+    bool hullClear(std::span<const Vec3> points) const { return hullWalk(points).clear; }
+    // hullClear's answer, and where the walks of segments inside the hull may begin.
+    HullVerdict hullWalk(std::span<const Vec3> points) const;
+    // stops() of a segment inside a hull that hullWalk did not call clear, begun where it says.
+    bool stopsFrom(const HullVerdict& hull, Vec3 from, Vec3 to) const;
     // The plain walk over the BSP lumps that the compact one must match answer for answer (used for
     // trees that are not proper trees, and by the tests).
     bool stopsByPlainWalk(Vec3 from, Vec3 to) const;

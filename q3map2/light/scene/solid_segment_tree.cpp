@@ -147,15 +147,15 @@ std::optional<Vec3> SolidSegmentTree::entryFrom(int32_t root, Vec3 from, Vec3 to
     }
 }
 
-bool SolidSegmentTree::hullClear(std::span<const Vec3> points) const {
-    if (!usable_ || points.empty()) return false;
-    if (root_ == kOpenSubtree) return true;
-    if (root_ == kSolidSubtree) return false;
+HullVerdict SolidSegmentTree::hullWalk(std::span<const Vec3> points) const {
+    if (!usable_ || points.empty()) return {};
+    if (root_ == kOpenSubtree) return {true, std::nullopt};
+    if (root_ == kSolidSubtree) return {false, root_};
     // The points' box gives an axial plane's distances at once; others take every point.
     double boxLo[3], boxHi[3];
     for (int k = 0; k < 3; ++k) boxLo[k] = boxHi[k] = points[0][k];
     for (const Vec3 p : points) {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return {};
         for (int k = 0; k < 3; ++k) {
             boxLo[k] = std::min(boxLo[k], double(p[k]));
             boxHi[k] = std::max(boxHi[k], double(p[k]));
@@ -163,7 +163,7 @@ bool SolidSegmentTree::hullClear(std::span<const Vec3> points) const {
     }
     double extent = 0;
     for (int k = 0; k < 3; ++k) extent = std::max({extent, std::fabs(boxLo[k]), std::fabs(boxHi[k])});
-    if (extent > 1e30) return false;
+    if (extent > 1e30) return {};
     // A walk splits its segment at float midpoints, each of which may stray from the hull by under
     // 1e-6 of the extent (a few roundings of float coordinates): the margin covers chains of such
     // splits far longer than real paths take. It stays below the 0.1 on-plane epsilon within 9000
@@ -174,10 +174,14 @@ bool SolidSegmentTree::hullClear(std::span<const Vec3> points) const {
     int32_t stack[kMaxCompactDepth];
     int top = 0, visited = 0;
     int32_t node = root_;
+    // The first node that sends the hull both ways: every node above it sends each segment the way
+    // it sends the hull, unsplit (no split point has been made yet, so the margin is not needed
+    // there but harmless), and walks begun at it end where walks from the root do.
+    std::optional<int32_t> firstFork;
     while (true) {
-        if (node == kSolidSubtree || ++visited > kNodeBudget) return false;
+        if (node == kSolidSubtree || ++visited > kNodeBudget) return {false, firstFork ? *firstFork : node};
         if (node < 0) {
-            if (top == 0) return true;
+            if (top == 0) return {true, std::nullopt};
             node = stack[--top];
             continue;
         }
@@ -218,7 +222,8 @@ bool SolidSegmentTree::hullClear(std::span<const Vec3> points) const {
             node = n.children[1];
         } else {
             // Both sides; the pending side waits on a stack no deeper than the path.
-            if (top == kMaxCompactDepth) return false;
+            if (!firstFork) firstFork = node;
+            if (top == kMaxCompactDepth) return {false, firstFork};
             stack[top++] = n.children[1];
             node = n.children[0];
         }

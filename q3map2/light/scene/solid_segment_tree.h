@@ -82,6 +82,14 @@ inline bool withinWalkRange(Vec3 from, Vec3 to) {
            std::fabs(to.x) <= kMaxCoord && std::fabs(to.y) <= kMaxCoord && std::fabs(to.z) <= kMaxCoord;
 }
 
+// What one walk of the convex hull of many segments' ends tells their own walks: none of them can
+// reach a stopping leaf (`clear`), or else each may begin at node `start`, above which every node
+// sends all of them the same way (nullopt: from the root, as without a hull).
+struct HullVerdict {
+    bool clear = false;
+    std::optional<int32_t> start;
+};
+
 class SolidSegmentTree {
 public:
     SolidSegmentTree() = default;
@@ -106,7 +114,9 @@ public:
     // leaf as crosses() walks it (margins cover the rounding of the walk's split points), so a
     // batch of rays inside that hull needs no walk of its own. False when some may, when the tree
     // is not usable, or when the answer would take more than a bounded number of nodes.
-    bool hullClear(std::span<const Vec3> points) const;
+    bool hullClear(std::span<const Vec3> points) const { return hullWalk(points).clear; }
+    // hullClear's answer, and where the segments' walks may begin when it is false.
+    HullVerdict hullWalk(std::span<const Vec3> points) const;
 
 private:
     // Children that are not copied nodes: the walk knows the answer there.

@@ -178,7 +178,9 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
       solidBetween_(options.solidBetween),
       skySolidBetween_(options.skySolidBetween),
       hullClearOfSolid_(options.hullClearOfSolid),
-      skyHullClear_(options.skyHullClear ? options.skyHullClear : options.hullClearOfSolid) {
+      skyHullClear_(options.skyHullClear ? options.skyHullClear : options.hullClearOfSolid),
+      solidBetweenInHull_(options.solidBetweenInHull),
+      skySolidBetweenInHull_(options.skyHullClear ? options.skySolidBetweenInHull : nullptr) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
@@ -342,23 +344,38 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
 
 namespace {
 
-// Both ends of the segments of one chunk of rays that still need the structural solid test.
+// Both ends of the segments of one chunk of rays that still need the structural solid test, and
+// the chunk slot of each.
 struct ChunkSegments {
     std::array<Vec3, 128> ends;
-    size_t count = 0;
-    void add(Vec3 from, Vec3 to) {
-        if (count + 2 > ends.size()) return;
-        ends[count++] = from;
-        ends[count++] = to;
-    }
-    // Whether none of them can enter solid, told by one walk of the hull of their ends (only
-    // asked for a few segments or more: one hull walk costs about what a few segment walks do).
-    bool clear(const std::function<bool(std::span<const Vec3>)>& hullClearOfSolid) const {
-        constexpr size_t kMinSegments = 4;
-        return hullClearOfSolid && count >= 2 * kMinSegments &&
-               hullClearOfSolid(std::span<const Vec3>(ends.data(), count));
+    std::array<uint8_t, 64> slots;
+    size_t count = 0;  // segments
+    void add(size_t slot, Vec3 from, Vec3 to) {
+        if (count >= slots.size()) return;
+        slots[count] = uint8_t(slot);
+        ends[2 * count] = from;
+        ends[2 * count + 1] = to;
+        ++count;
     }
 };
+
+using HullWalk = std::function<HullVerdict(std::span<const Vec3>)>;
+using SegmentWalk = std::function<bool(const HullVerdict&, Vec3, Vec3)>;
+
+// Sets crosses[slot] for every segment of `segs`. One walk of the hull of their ends may tell that
+// none of them enters solid (asked only of a few segments or more: a hull walk costs about what a
+// segment walk does); when it cannot, each segment is walked from where the hull's walk parted.
+// (Halving a hull that is not clear seldom gives clear halves: a hull walk does not clip the hull
+// where a segment walk splits its segment, so it meets solid beside the segments.)
+void settleSegments(const ChunkSegments& segs, const HullWalk& hullWalk, const SegmentWalk& walk, bool* crosses) {
+    constexpr size_t kMinHull = 4;
+    HullVerdict verdict;
+    if (hullWalk && segs.count >= kMinHull) {
+        verdict = hullWalk(std::span<const Vec3>(segs.ends.data(), 2 * segs.count));
+        if (verdict.clear) return;
+    }
+    for (size_t i = 0; i < segs.count; ++i) crosses[segs.slots[i]] = walk(verdict, segs.ends[2 * i], segs.ends[2 * i + 1]);
+}
 
 }  // namespace
 
@@ -454,26 +471,30 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     // Segments that Embree leaves open still stop at structural solid (sun rays up to their sky,
     // whose distance their tfar now holds): the tree walk only for the rays that need it, and none
     // when the hull of their ends is clear (sun and point-light segments apart: one long sun prism
-    // would spoil the point lights' hull).
+    // would spoil the point lights' hull). `crosses` starts false: clear hulls leave it so.
     static_assert(kBatchChunk <= 64, "ChunkSegments holds both ends of a chunk's rays");
     ChunkSegments toSky, toPoint;
-    auto segmentEnd = [&](size_t k) {
-        const ShadowRay& r = rays[occlusionBuffer[k].id];
-        return r.from + r.direction * (r.toSky ? occlusionBuffer[k].tfar : r.tfar);
-    };
     for (size_t k = 0; k < numOcclusion; ++k) {
         const ShadowRay& r = rays[occlusionBuffer[k].id];
-        if (occlusionBuffer[k].tfar >= 0 && !r.clearOfSolid) (r.toSky ? toSky : toPoint).add(r.from, segmentEnd(k));
+        if (occlusionBuffer[k].tfar < 0 || r.clearOfSolid) continue;
+        (r.toSky ? toSky : toPoint).add(k, r.from, r.from + r.direction * (r.toSky ? occlusionBuffer[k].tfar : r.tfar));
     }
-    const bool skyClear = toSky.clear(skyHullClear_), pointClear = toPoint.clear(hullClearOfSolid_);
-    for (size_t k = 0; k < numOcclusion; ++k) {
-        if (occlusionBuffer[k].tfar < 0) continue;
-        const ShadowRay& r = rays[occlusionBuffer[k].id];
-        if (!r.clearOfSolid && !(r.toSky ? skyClear : pointClear) &&
-            (r.toSky ? skyRayCrossesSolid(r.from, segmentEnd(k)) : crossesSolid(r.from, segmentEnd(k))))
-            continue;
-        out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
+    bool crosses[kBatchChunk] = {};
+    if (toPoint.count > 0) {
+        const SegmentWalk walk = [&](const HullVerdict& hull, Vec3 from, Vec3 to) {
+            return hull.start && solidBetweenInHull_ ? solidBetweenInHull_(hull, from, to) : crossesSolid(from, to);
+        };
+        settleSegments(toPoint, hullClearOfSolid_, walk, crosses);
     }
+    if (toSky.count > 0) {
+        const SegmentWalk walk = [&](const HullVerdict& hull, Vec3 from, Vec3 to) {
+            return hull.start && skySolidBetweenInHull_ ? skySolidBetweenInHull_(hull, from, to)
+                                                       : skyRayCrossesSolid(from, to);
+        };
+        settleSegments(toSky, skyHullClear_, walk, crosses);
+    }
+    for (size_t k = 0; k < numOcclusion; ++k)
+        if (occlusionBuffer[k].tfar >= 0 && !crosses[k]) out[occlusionBuffer[k].id] = Vec3{1, 1, 1};
     if (hits.empty()) return;
     const std::vector<TranslucentHit> sorted = sortedHits(hits);
     for (size_t a = 0; a < sorted.size();) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "lights.h"
+#include "solid_segment_tree.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -50,11 +51,17 @@ struct TraceSceneOptions {
     // The same test for sun rays, up to their sky (q3map2 walks them otherwise: sky_ray_solid.h).
     // Empty: solidBetween.
     std::function<bool(Vec3 from, Vec3 to)> skySolidBetween;
-    // Optional shortcut for many rays: true when no segment inside the convex hull of the points
-    // (at most BspTree::kMaxHullPoints) can enter solid, so solidBetween need not be asked for them.
-    std::function<bool(std::span<const Vec3> points)> hullClearOfSolid;
-    // The same shortcut for sun rays under skySolidBetween's rule. Empty: hullClearOfSolid.
-    std::function<bool(std::span<const Vec3> points)> skyHullClear;
+    // Optional shortcut for many rays: clear when no segment inside the convex hull of the points
+    // (both ends of each) can enter solid, so solidBetween need not be asked for them; otherwise
+    // where their walks may begin (solidBetweenInHull).
+    std::function<HullVerdict(std::span<const Vec3> points)> hullClearOfSolid;
+    // solidBetween of a segment inside a hull that was not clear, begun where the verdict says.
+    // Empty: solidBetween.
+    std::function<bool(const HullVerdict& hull, Vec3 from, Vec3 to)> solidBetweenInHull;
+    // The same two for sun rays under skySolidBetween's rule. Empty: hullClearOfSolid, and
+    // skySolidBetween.
+    std::function<HullVerdict(std::span<const Vec3> points)> skyHullClear;
+    std::function<bool(const HullVerdict& hull, Vec3 from, Vec3 to)> skySolidBetweenInHull;
 };
 
 // Every shadow group: the ray mask of rays that any caster may block.
@@ -157,8 +164,10 @@ private:
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
     std::function<bool(Vec3, Vec3)> solidBetween_;
     std::function<bool(Vec3, Vec3)> skySolidBetween_;
-    std::function<bool(std::span<const Vec3>)> hullClearOfSolid_;
-    std::function<bool(std::span<const Vec3>)> skyHullClear_;
+    std::function<HullVerdict(std::span<const Vec3>)> hullClearOfSolid_;
+    std::function<HullVerdict(std::span<const Vec3>)> skyHullClear_;
+    std::function<bool(const HullVerdict&, Vec3, Vec3)> solidBetweenInHull_;
+    std::function<bool(const HullVerdict&, Vec3, Vec3)> skySolidBetweenInHull_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {
