@@ -134,8 +134,21 @@ struct LeafWinding {
     Winding w;
 };
 
+// Which side of the plane a winding lies on as clipWinding sees it: 0 front (no corner behind),
+// 1 back (none in front), -1 both.
+int windingSide(const Winding& w, Vec3 normal, float dist) {
+    bool front = false, back = false;
+    for (const TraceVert& v : w.v) {
+        const float d = dot(normal, v.xyz) - dist;
+        back = back || d < -kClipOnEpsilon;
+        front = front || d > kClipOnEpsilon;
+    }
+    return !back ? 0 : !front ? 1 : -1;
+}
+
 // q3map2 FilterTraceWindingIntoNodes_r: a winding on a node's plane goes to the side it faces,
-// uncut; the others are cut by the plane.
+// uncut; the others are cut by the plane. A winding that lies on one side walks on without a copy;
+// of a cut one, the front part is walked first.
 void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float planeDist, size_t leafCount,
                       std::vector<LeafWinding>& out) {
     struct Item {
@@ -143,33 +156,52 @@ void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float pl
         int32_t node;  // >= 0 node, < 0 leaf -(index + 1)
         int depth;
     };
-    std::vector<Item> stack;
-    stack.push_back({std::move(w), 0, 0});
-    while (!stack.empty()) {
-        Item item = std::move(stack.back());
-        stack.pop_back();
-        if (item.node < 0) {
-            const size_t leaf = size_t(-(item.node + 1));
-            if (leaf < leafCount) out.push_back({leaf, item.depth, std::move(item.w)});
+    std::vector<Item> pending;
+    Winding current = std::move(w);
+    int32_t node = 0;
+    int depth = 0;
+    auto takePending = [&] {
+        if (pending.empty()) return false;
+        current = std::move(pending.back().w);
+        node = pending.back().node;
+        depth = pending.back().depth;
+        pending.pop_back();
+        return true;
+    };
+    while (true) {
+        const bool valid = node >= 0 && size_t(node) < bsp.nodes.size() && bsp.nodes[size_t(node)].planeNum >= 0 &&
+                           size_t(bsp.nodes[size_t(node)].planeNum) < bsp.planes.size();
+        if (!valid) {
+            if (node < 0 && size_t(-(node + 1)) < leafCount) out.push_back({size_t(-(node + 1)), depth, std::move(current)});
+            if (!takePending()) return;
             continue;
         }
-        if (size_t(item.node) >= bsp.nodes.size()) continue;
-        const bsp::Node& node = bsp.nodes[size_t(item.node)];
-        if (node.planeNum < 0 || size_t(node.planeNum) >= bsp.planes.size()) continue;
-        const bsp::Plane& plane = bsp.planes[size_t(node.planeNum)];
+        const bsp::Node& n = bsp.nodes[size_t(node)];
+        const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
         const Vec3 normal = Vec3::fromArray(plane.normal);
+        ++depth;
         if (dot(normal, planeNormal) > 0.999f && std::fabs(plane.dist - planeDist) < 0.001f) {
-            stack.push_back({std::move(item.w), node.children[0], item.depth + 1});
+            node = n.children[0];
             continue;
         }
         if (dot(normal, -planeNormal) > 0.999f && std::fabs(plane.dist + planeDist) < 0.001f) {
-            stack.push_back({std::move(item.w), node.children[1], item.depth + 1});
+            node = n.children[1];
+            continue;
+        }
+        const int side = windingSide(current, normal, plane.dist);
+        if (side >= 0) {
+            node = n.children[side];
             continue;
         }
         Winding front, back;
-        clipWinding(item.w, normal, plane.dist, front, back);
-        if (back.v.size() >= 3) stack.push_back({std::move(back), node.children[1], item.depth + 1});
-        if (front.v.size() >= 3) stack.push_back({std::move(front), node.children[0], item.depth + 1});
+        clipWinding(current, normal, plane.dist, front, back);
+        if (back.v.size() >= 3) pending.push_back({std::move(back), n.children[1], depth});
+        if (front.v.size() >= 3) {
+            current = std::move(front);
+            node = n.children[0];
+        } else if (!takePending()) {
+            return;
+        }
     }
 }
 
@@ -215,7 +247,12 @@ void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
     Vec3 normal;
     normal[split.axis] = 1.0f;
     std::vector<Winding> fronts, backs;
-    for (const Winding& w : windings) {
+    for (Winding& w : windings) {
+        const int side = windingSide(w, normal, split.dist);
+        if (side >= 0) {
+            (side == 0 ? fronts : backs).push_back(std::move(w));
+            continue;
+        }
         Winding front, back;
         clipWinding(w, normal, split.dist, front, back);
         if (front.v.size() >= 3) fronts.push_back(std::move(front));
