@@ -156,7 +156,7 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 };
                 // A surface of many vertexes (a large soup or terrain) would otherwise keep one core
                 // busy after the others have finished: its vertexes are traced in parallel too.
-                constexpr int kVertexGrain = 32;
+                constexpr int kVertexGrain = 4;
                 if (s.numVerts > 2 * kVertexGrain)
                     tbb::parallel_for(tbb::blocked_range<int>(0, s.numVerts, kVertexGrain), traceRange);
                 else
@@ -172,8 +172,14 @@ void lightVertexes(LightContext& ctx, Log& log) {
                 const Vec3 fallback = litCount > 0 ? litSum / float(litCount) : ambient;
                 for (size_t v = 0; v < lit.size(); ++v) lit[v] += traced[v].value_or(fallback);
             };
-            addPass(ctx.lights, reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
-            for (size_t b = 0; b < ctx.bounceLights.size(); ++b) addPass(ctx.bounceLights[b], reaches[b + 1], Vec3{});
+            // A lightmapped surface takes every vertex colour from its lightmap: nothing to trace.
+            bool traces = false;
+            for (int v = 0; v < s.numVerts && !traces; ++v) traces = !ctx.vertexFromLightmap[size_t(s.firstVert + v)];
+            if (traces) {
+                addPass(ctx.lights, reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
+                for (size_t b = 0; b < ctx.bounceLights.size(); ++b)
+                    addPass(ctx.bounceLights[b], reaches[b + 1], Vec3{});
+            }
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
                 bsp::DrawVert& dv = bsp.drawVerts[vi];
