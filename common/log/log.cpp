@@ -22,9 +22,22 @@ int Log::warningCount() const {
     return warnings_;
 }
 
+void Log::replayInto(Log& other) const {
+    std::vector<HeldMessage> held;
+    {
+        std::lock_guard lock(mutex_);
+        held = held_;
+    }
+    for (const HeldMessage& m : held) other.emit(m.level, m.text, m.newline);
+}
+
 void Log::emit(LogLevel level, std::string_view text, bool newline) {
     std::lock_guard lock(mutex_);
     if (level == LogLevel::Warning) ++warnings_;
+    if (holding_) {
+        held_.push_back({level, std::string(text), newline});
+        return;
+    }
     std::string line;
     if (level == LogLevel::Warning) line = "WARNING: ";
     else if (level == LogLevel::Error) line = "ERROR: ";

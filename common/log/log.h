@@ -42,7 +42,18 @@ public:
 
     int warningCount() const;
 
+    // Holds messages back instead of printing them or passing them to sinks (warnings are still
+    // counted here), so that work done in parallel can report in a fixed order: replayInto() then
+    // passes them on, in the order they came, to another log.
+    void holdMessages() { holding_ = true; }
+    void replayInto(Log& other) const;
+
 private:
+    struct HeldMessage {
+        LogLevel level;
+        std::string text;
+        bool newline;
+    };
     void emit(LogLevel level, std::string_view text, bool newline);
 
     mutable std::mutex mutex_;
@@ -50,6 +61,8 @@ private:
     bool verbose_ = false;
     bool console_ = true;
     int warnings_ = 0;
+    bool holding_ = false;
+    std::vector<HeldMessage> held_;
 };
 
 }  // namespace q3

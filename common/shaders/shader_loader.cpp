@@ -1,6 +1,10 @@
 #include "shader_loader.h"
 
+#include <oneapi/tbb/parallel_for.h>
+
 #include <algorithm>
+#include <cctype>
+#include <exception>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
@@ -13,6 +17,13 @@ namespace {
 
 bool containsNoCase(const std::vector<std::string>& list, std::string_view item) {
     return std::any_of(list.begin(), list.end(), [&](const std::string& s) { return equalsNoCase(s, item); });
+}
+
+// Whether `text` holds `word` in any case.
+bool containsNoCase(std::string_view text, std::string_view word) {
+    return std::search(text.begin(), text.end(), word.begin(), word.end(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           }) != text.end();
 }
 
 // Lower-case names already taken: lists may name tens of thousands of files, so membership tests
@@ -73,8 +84,39 @@ ShaderTable buildShaderTable(const std::vector<ShaderScriptSource>& scripts, con
     table.setHasShaderList(shaderListFound);
     NoCaseSet listedSet;
     for (const std::string& name : listed) listedSet.insert(name);
-    for (const ShaderScriptSource& script : scripts) {
-        std::vector<ShaderInfo> shaders = parseShaderScript(script.text, script.displayName, log, &table);
+    // The scripts are parsed in parallel, each with its messages held back, and taken into the
+    // table in order, their messages (and a fatal error) passed on as a sequential parse would.
+    // A script with q3map_baseShader may copy a shader of an earlier script: it is parsed in turn,
+    // once the table holds every earlier one.
+    struct Parsed {
+        bool inTurn = false;
+        std::vector<ShaderInfo> shaders;
+        Log messages{false};
+        std::exception_ptr error;
+    };
+    std::vector<Parsed> parsed(scripts.size());
+    for (size_t i = 0; i < scripts.size(); ++i) parsed[i].inTurn = containsNoCase(scripts[i].text, "q3map_baseShader");
+    tbb::parallel_for(size_t(0), scripts.size(), [&](size_t i) {
+        Parsed& p = parsed[i];
+        if (p.inTurn) return;
+        p.messages.setVerbose(log.verbose());
+        p.messages.holdMessages();
+        try {
+            p.shaders = parseShaderScript(scripts[i].text, scripts[i].displayName, p.messages, nullptr);
+        } catch (...) {
+            p.error = std::current_exception();
+        }
+    });
+    for (size_t i = 0; i < scripts.size(); ++i) {
+        const ShaderScriptSource& script = scripts[i];
+        std::vector<ShaderInfo> shaders;
+        if (parsed[i].inTurn) {
+            shaders = parseShaderScript(script.text, script.displayName, log, &table);
+        } else {
+            parsed[i].messages.replayInto(log);
+            if (parsed[i].error) std::rethrow_exception(parsed[i].error);
+            shaders = std::move(parsed[i].shaders);
+        }
         ShaderTable::SourceFile file;
         file.path = script.path;
         file.inShaderList = listedSet.contains(script.path);

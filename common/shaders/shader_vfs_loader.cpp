@@ -1,4 +1,6 @@
 // The shader table of a game: every scripts/*.shader of the VFS, shader lists first.
+#include <oneapi/tbb/parallel_for.h>
+
 #include <algorithm>
 #include <unordered_set>
 
@@ -25,15 +27,17 @@ ShaderTable loadShaderTable(const Vfs& vfs, Log& log) {
             if (listedKeys.insert(toLower(name)).second) listed.push_back(std::move(name));
 
     std::vector<std::string> order = shaderScriptLoadOrder(vfs.list(scriptDir, "shader"), listed, log);
+    // Read (and inflated) in parallel, kept in load order.
+    std::vector<std::optional<std::vector<uint8_t>>> read(order.size());
+    tbb::parallel_for(size_t(0), order.size(), [&](size_t i) { read[i] = vfs.read(order[i]); });
     std::vector<ShaderScriptSource> scripts;
     scripts.reserve(order.size());
-    for (const std::string& path : order) {
-        std::optional<std::vector<uint8_t>> bytes = vfs.read(path);
-        if (!bytes) continue;
+    for (size_t i = 0; i < order.size(); ++i) {
+        if (!read[i]) continue;
         ShaderScriptSource source;
-        source.path = path;
-        source.displayName = vfs.sourceOf(path).value_or(path);
-        source.text = bytesToText(*bytes);
+        source.path = order[i];
+        source.displayName = vfs.sourceOf(order[i]).value_or(order[i]);
+        source.text = bytesToText(*read[i]);
         scripts.push_back(std::move(source));
     }
     ShaderTable table = buildShaderTable(scripts, listed, !lists.empty(), log);

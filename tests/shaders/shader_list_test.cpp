@@ -2,6 +2,7 @@
 // file the list leaves out is reported.
 #include <gtest/gtest.h>
 
+#include "script.h"
 #include "shader_loader.h"
 #include "shader_test_util.h"
 
@@ -75,6 +76,44 @@ TEST(ShaderList, NoWarningWithoutAShaderList) {
     std::vector<std::string> used = {"textures/a/b"};
     EXPECT_EQ(warnShadersOutsideShaderList(table, used, cap.log), 0);
     EXPECT_TRUE(cap.warnings.empty());
+}
+
+// Scripts are parsed side by side: a q3map_baseShader naming a shader of an earlier file still
+// finds it, the table keeps file order, and each file's warnings come out in file order.
+TEST(ShaderList, ScriptsParsedTogetherKeepFileOrder) {
+    std::vector<ShaderScriptSource> scripts;
+    for (int i = 0; i < 24; ++i) {
+        const std::string n = std::to_string(i);
+        scripts.push_back({"scripts/f" + n + ".shader", "scripts/f" + n + ".shader",
+                           "textures/f/s" + n + "\n{\n q3map_surfacelight " + n + "\n q3map_lightRGB 1 x 1\n}\n"});
+    }
+    scripts.push_back({"scripts/derived.shader", "scripts/derived.shader",
+                       "textures/d/lamp\n{\n Q3MAP_BASESHADER textures/f/s7\n q3map_backsplash 3 9\n}\n"});
+    scripts.push_back({"scripts/late.shader", "scripts/late.shader", "textures/f/s3\n{\n q3map_surfacelight 99\n}\n"});
+    CapturedLog cap;
+    ShaderTable table = buildShaderTable(scripts, {}, false, cap.log);
+    ASSERT_EQ(table.files().size(), scripts.size());
+    for (size_t i = 0; i < scripts.size(); ++i) EXPECT_EQ(table.files()[i].path, scripts[i].path);
+    EXPECT_FLOAT_EQ(table.find("textures/d/lamp").surfaceLight, 7);  // from the earlier file's s7
+    EXPECT_FLOAT_EQ(table.find("textures/f/s3").surfaceLight, 3);     // the first definition wins
+    ASSERT_EQ(cap.warnings.size(), 24u) << cap.all();
+    for (size_t i = 0; i < 24; ++i)
+        EXPECT_NE(cap.warnings[i].find("scripts/f" + std::to_string(i) + ".shader:"), std::string::npos)
+            << cap.warnings[i];
+}
+
+// A fatal error stops the table at its file, after the messages of the files before it, as a
+// sequential parse would.
+TEST(ShaderList, FatalScriptErrorStopsAtItsFile) {
+    std::vector<ShaderScriptSource> scripts = {
+        {"scripts/a.shader", "scripts/a.shader", "textures/a/a\n{\n q3map_lightRGB 1 x 1\n}\n"},
+        {"scripts/b.shader", "scripts/b.shader", "textures/b/b\n  surfaceparm nodraw\n}\n"},
+        {"scripts/c.shader", "scripts/c.shader", "textures/c/c\n{\n q3map_lightRGB 1 y 1\n}\n"},
+    };
+    CapturedLog cap;
+    EXPECT_THROW(buildShaderTable(scripts, {}, false, cap.log), ScriptError);
+    ASSERT_EQ(cap.warnings.size(), 1u) << cap.all();
+    EXPECT_NE(cap.warnings[0].find("scripts/a.shader:"), std::string::npos);
 }
 
 }  // namespace
