@@ -51,9 +51,10 @@ LightmapGroups lightmapGroups(const LightContext& ctx, std::span<const int> surf
             if (s >= 0 && size_t(s) < modelOf.size()) modelOf[size_t(s)] = int(m);
     }
     const LightOptions& o = ctx.options;
-    std::vector<SurfaceLightmapInput> inputs;
-    inputs.reserve(surfaces.size());
-    for (int s : surfaces) {
+    // Each surface's input (a patch's is its tessellated mesh) made in parallel, into its own slot.
+    std::vector<SurfaceLightmapInput> inputs(surfaces.size());
+    auto makeInput = [&](size_t k) {
+        const int s = surfaces[k];
         const bsp::Surface& surface = ctx.bsp.surfaces[size_t(s)];
         const LightingShader& shader = ctx.shaders.shaders[size_t(surface.shaderNum)];
         const SurfaceExtra& extra = ctx.extras.forSurface(s);
@@ -75,8 +76,11 @@ LightmapGroups lightmapGroups(const LightContext& ctx, std::span<const int> surf
         in.traits.receiveShadows = extra.receiveShadows;
         in.traits.brightness = shader.lightmapBrightness;
         in.traits.filterRadius = shader.lightmapFilterRadius;
-        inputs.push_back(std::move(in));
-    }
+        inputs[k] = std::move(in);
+    };
+    tbb::task_arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(size_t(0), surfaces.size(), makeInput);
+    });
     LightmapGroups out;
     out.clusters.resize(ctx.bsp.surfaces.size());
     for (const std::vector<size_t>& group : groupSurfacesForLightmaps(inputs)) {

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <numeric>
+#include <tuple>
 
 namespace q3::light {
 
@@ -78,6 +81,33 @@ bool canJoin(const SurfaceLightmapInput& first, const Info& firstInfo, const Bou
     return true;
 }
 
+// What canJoin requires a candidate to share with a group's first surface, as one sortable key
+// (floats by value: -0 as +0; a NaN makes its own key, and canJoin rejects it anyway).
+using JoinKey = std::tuple<int, int, int, int, int, int, uint32_t, uint32_t, bool, uint32_t, uint32_t, uint32_t>;
+
+uint32_t keyBits(float v) {
+    const float normal = v + 0.0f;
+    uint32_t bits = 0;
+    std::memcpy(&bits, &normal, sizeof bits);
+    return bits;
+}
+
+JoinKey joinKey(const SurfaceLightmapInput& in, const Info& info) {
+    const LightmapMergeTraits& t = in.traits;
+    return {t.model,
+            in.params.sampleSize,
+            t.entity,
+            t.receiveShadows,
+            in.params.pageWidth,
+            in.params.pageHeight,
+            keyBits(t.brightness),
+            keyBits(t.filterRadius),
+            t.splotchFix,
+            keyBits(info.axis.x),
+            keyBits(info.axis.y),
+            keyBits(info.axis.z)};
+}
+
 }  // namespace
 
 std::vector<std::vector<size_t>> groupSurfacesForLightmaps(std::span<const SurfaceLightmapInput> inputs) {
@@ -89,6 +119,17 @@ std::vector<std::vector<size_t>> groupSurfacesForLightmaps(std::span<const Surfa
     std::sort(order.begin(), order.end(),
               [&](size_t a, size_t b) { return sortsBefore(inputs[a], infos[a], a, inputs[b], infos[b], b); });
 
+    // Only surfaces alike in everything canJoin compares can join one group: each scans the later
+    // surfaces of its own kind (in sorted order), not every later surface of the map.
+    std::map<JoinKey, std::vector<size_t>> kinds;  // sorted positions of each kind's surfaces
+    std::vector<const std::vector<size_t>*> kindOf(order.size());
+    for (size_t oi = 0; oi < order.size(); ++oi) {
+        std::vector<size_t>& kind = kinds[joinKey(inputs[order[oi]], infos[order[oi]])];
+        kind.push_back(oi);
+    }
+    for (const auto& [key, positions] : kinds)
+        for (const size_t oi : positions) kindOf[oi] = &positions;
+
     std::vector<uint8_t> assigned(inputs.size(), 0);
     std::vector<std::vector<size_t>> groups;
     for (size_t oi = 0; oi < order.size(); ++oi) {
@@ -97,12 +138,17 @@ std::vector<std::vector<size_t>> groupSurfacesForLightmaps(std::span<const Surfa
         assigned[first] = 1;
         std::vector<size_t> group{first};
         Bounds bounds = infos[first].bounds;
+        const std::vector<size_t>& kind = *kindOf[oi];
+        const auto later = std::upper_bound(kind.begin(), kind.end(), oi);
         // Exhaustive: a surface added later can make earlier rejected ones touch the group.
         for (bool added = true; added && !infos[first].curved;) {
             added = false;
-            for (size_t oj = oi + 1; oj < order.size(); ++oj) {
-                const size_t cand = order[oj];
-                if (assigned[cand] || !canJoin(inputs[first], infos[first], bounds, inputs[cand], infos[cand])) continue;
+            for (auto it = later; it != kind.end(); ++it) {
+                const size_t cand = order[*it];
+                // The box test first: most surfaces of a kind lie elsewhere in the map.
+                if (assigned[cand] || !infos[cand].bounds.intersects(bounds) ||
+                    !canJoin(inputs[first], infos[first], bounds, inputs[cand], infos[cand]))
+                    continue;
                 assigned[cand] = 1;
                 group.push_back(cand);
                 bounds.add(infos[cand].bounds);
