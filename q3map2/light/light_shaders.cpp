@@ -42,6 +42,13 @@ void applyBspFlags(LightingShader& s, const bsp::Shader& record) {
     s.fog = s.fog || (cont & q3::contents::Fog);
 }
 
+// What a BSP shader is before its light image is known (which images it needs follows from it).
+LightingShader shaderWithoutImage(const ShaderInfo& info, const bsp::Shader& record) {
+    LightingShader probe = toLightingShader(info, nullptr);
+    if (!info.explicitScript) applyBspFlags(probe, record);
+    return probe;
+}
+
 // One image read ahead of its first use: the image (null when it does not exist) and the warning
 // its load gave, logged only when the image is first used, where a sequential load would log it.
 struct ReadAhead {
@@ -88,8 +95,7 @@ std::map<std::string, ReadAhead> readImagesAhead(const bsp::Bsp& bsp, const Shad
     std::vector<std::string> names;
     for (const bsp::Shader& record : bsp.shaders) {
         const ShaderInfo& info = table.find(std::string(record.name, strnlen(record.name, sizeof(record.name))));
-        LightingShader probe = toLightingShader(info, nullptr);
-        if (!info.explicitScript) applyBspFlags(probe, record);
+        const LightingShader probe = shaderWithoutImage(info, record);
         if (needsImage(probe)) {
             const std::vector<std::string> candidates = info.lightImageCandidates();
             if (!candidates.empty()) names.push_back(candidates.front());
@@ -179,8 +185,7 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
     for (const bsp::Shader& record : bsp.shaders) {
         const std::string name(record.name, strnlen(record.name, sizeof(record.name)));
         const ShaderInfo& info = table.find(name);
-        LightingShader probe = toLightingShader(info, nullptr);
-        if (!info.explicitScript) applyBspFlags(probe, record);
+        const LightingShader probe = shaderWithoutImage(info, record);
 
         const LightImage* image = nullptr;
         if (vfs && needsImage(probe)) {

@@ -57,10 +57,11 @@ struct Winding {
     size_t surface = 0;  // index into the input surfaces
 };
 
-// q3map2 ClipTraceWinding: the parts of `w` in front of and behind the plane; a winding with no
-// corner behind is all front, one with none in front all back. Split points on an axial plane
+// q3map2 ClipTraceWinding: a winding with no corner behind the plane is all front (returns 0),
+// one with none in front all back (1), and `front` and `back` are then left empty: the caller
+// keeps the winding whole. Otherwise (-1) they receive the parts. Split points on an axial plane
 // take its distance exactly.
-void clipWinding(const Winding& w, Vec3 normal, float dist, Winding& front, Winding& back) {
+int clipWinding(const Winding& w, Vec3 normal, float dist, Winding& front, Winding& back) {
     front.v.clear();
     back.v.clear();
     front.surface = back.surface = w.surface;
@@ -85,14 +86,8 @@ void clipWinding(const Winding& w, Vec3 normal, float dist, Winding& front, Wind
         sides[i] = dists[i] < -kClipOnEpsilon ? -1 : dists[i] > kClipOnEpsilon ? 1 : 0;
         ++counts[sides[i] + 1];
     }
-    if (counts[0] == 0) {
-        front.v = w.v;
-        return;
-    }
-    if (counts[2] == 0) {
-        back.v = w.v;
-        return;
-    }
+    if (counts[0] == 0) return 0;
+    if (counts[2] == 0) return 1;
     for (size_t i = 0; i < n; ++i) {
         const size_t j = (i + 1) % n;
         const TraceVert& a = w.v[i];
@@ -119,6 +114,7 @@ void clipWinding(const Winding& w, Vec3 normal, float dist, Winding& front, Wind
         front.v.push_back(mid);
         back.v.push_back(mid);
     }
+    return -1;
 }
 
 // The windings that reach each leaf of the BSP tree, with the depth of that leaf (head node 0).
@@ -134,18 +130,6 @@ struct LeafWinding {
     Winding w;
 };
 
-// Which side of the plane a winding lies on as clipWinding sees it: 0 front (no corner behind),
-// 1 back (none in front), -1 both.
-int windingSide(const Winding& w, Vec3 normal, float dist) {
-    bool front = false, back = false;
-    for (const TraceVert& v : w.v) {
-        const float d = dot(normal, v.xyz) - dist;
-        back = back || d < -kClipOnEpsilon;
-        front = front || d > kClipOnEpsilon;
-    }
-    return !back ? 0 : !front ? 1 : -1;
-}
-
 // q3map2 FilterTraceWindingIntoNodes_r: a winding on a node's plane goes to the side it faces,
 // uncut; the others are cut by the plane. A winding that lies on one side walks on without a copy;
 // of a cut one, the front part is walked first.
@@ -157,7 +141,7 @@ void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float pl
         int depth;
     };
     std::vector<Item> pending;
-    Winding current = std::move(w);
+    Winding current = std::move(w), front, back;
     int32_t node = 0;
     int depth = 0;
     auto takePending = [&] {
@@ -188,13 +172,11 @@ void filterIntoLeaves(const bsp::Bsp& bsp, Winding w, Vec3 planeNormal, float pl
             node = n.children[1];
             continue;
         }
-        const int side = windingSide(current, normal, plane.dist);
+        const int side = clipWinding(current, normal, plane.dist, front, back);
         if (side >= 0) {
             node = n.children[side];
             continue;
         }
-        Winding front, back;
-        clipWinding(current, normal, plane.dist, front, back);
         if (back.v.size() >= 3) pending.push_back({std::move(back), n.children[1], depth});
         if (front.v.size() >= 3) {
             current = std::move(front);
@@ -247,14 +229,13 @@ void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
     Vec3 normal;
     normal[split.axis] = 1.0f;
     std::vector<Winding> fronts, backs;
+    Winding front, back;
     for (Winding& w : windings) {
-        const int side = windingSide(w, normal, split.dist);
+        const int side = clipWinding(w, normal, split.dist, front, back);
         if (side >= 0) {
             (side == 0 ? fronts : backs).push_back(std::move(w));
             continue;
         }
-        Winding front, back;
-        clipWinding(w, normal, split.dist, front, back);
         if (front.v.size() >= 3) fronts.push_back(std::move(front));
         if (back.v.size() >= 3) backs.push_back(std::move(back));
     }
