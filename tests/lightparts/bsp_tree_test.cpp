@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include <cmath>
@@ -140,6 +141,35 @@ TEST(BspTree, SegmentCrossesSolidLeafOnly) {
     loop.nodes[0].children[0] = 0;
     loop.nodes[0].children[1] = 0;
     EXPECT_FALSE(BspTree(loop).segmentCrossesSolid({10, 0, 0}, {20, 0, 0}));
+}
+
+TEST(BspTree, PolygonInSolidOnlyWhenEveryPartIs) {
+    bsp::Bsp b = twoLeafBsp();
+    b.leafs[1].cluster = -1;  // x < 0 solid
+    const BspTree tree(b);
+    const std::array<Vec3, 3> behind{Vec3{-0.5f, 0, 0}, Vec3{-0.5f, 100, 0}, Vec3{-0.5f, 0, 100}};
+    EXPECT_TRUE(tree.polygonInSolid(behind));
+    const std::array<Vec3, 4> deep{Vec3{-10, 0, 0}, Vec3{-200, 0, 0}, Vec3{-200, 0, 50}, Vec3{-10, 0, 50}};
+    EXPECT_TRUE(tree.polygonInSolid(deep));
+    // A polygon the plane cuts has a part in the open leaf.
+    const std::array<Vec3, 3> across{Vec3{-5, 0, 0}, Vec3{5, 0, 0}, Vec3{-5, 0, 10}};
+    EXPECT_FALSE(tree.polygonInSolid(across));
+    // Within 0.01 of the plane counts as on both sides: not in solid.
+    const std::array<Vec3, 3> touching{Vec3{-0.005f, 0, 0}, Vec3{-10, 0, 0}, Vec3{-10, 0, 10}};
+    EXPECT_FALSE(tree.polygonInSolid(touching));
+    EXPECT_FALSE(tree.polygonInSolid(std::array<Vec3, 3>{Vec3{1, 0, 0}, Vec3{2, 0, 0}, Vec3{1, 1, 0}}));
+    // Both leafs in clusters, no node tree, a non-finite corner, too few corners: never in solid.
+    EXPECT_FALSE(BspTree(twoLeafBsp()).polygonInSolid(behind));
+    bsp::Bsp flat = b;
+    flat.nodes.clear();
+    EXPECT_FALSE(BspTree(flat).polygonInSolid(behind));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(tree.polygonInSolid(std::array<Vec3, 3>{Vec3{-1, 0, 0}, Vec3{nan, 0, 0}, Vec3{-1, 1, 0}}));
+    EXPECT_FALSE(tree.polygonInSolid(std::span(behind.data(), 2)));
+    // A node pointing at itself ends instead of looping.
+    bsp::Bsp loop = b;
+    loop.nodes[0].children[1] = 0;
+    EXPECT_FALSE(BspTree(loop).polygonInSolid(behind));
 }
 
 TEST(BspTree, BoxNudgeSearchGoesRingByRing) {

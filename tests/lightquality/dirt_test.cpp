@@ -274,6 +274,40 @@ TEST(Dirt, RaysIntoStructuralSolidCountHoweverClose) {
               dirtForSample({40, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0, 1.5f));
 }
 
+TEST(Dirt, OpenRaysSkipOnlySurfacesBackedBySolid) {
+    // The wall wound as Quake 3 winds a face seen from x > 0, with the solid leaf behind it; the
+    // floor has open space below it.
+    const std::vector<SceneSurface> surfaces{test::quad({0, 0, 0}, {512, 0, 0}, {0, 512, 0}),
+                                             test::quad({0, 0, 0}, {0, 0, 256}, {0, 512, 0})};
+    const bsp::Bsp b = wallTreeBsp();
+    const BspTree tree(b);
+    const SolidBackedTest backed = dirtSolidBacked(tree);
+    const std::span<const Vec3, 3> wallTriangle(surfaces[1].xyz.data(), 3);
+    EXPECT_TRUE(backed(wallTriangle));
+    EXPECT_FALSE(backed(std::span<const Vec3, 3>(surfaces[0].xyz.data(), 3)));
+    // Wound the other way the wall's back would be the open room: not backed.
+    const std::array<Vec3, 3> reversed{surfaces[1].xyz[0], surfaces[1].xyz[2], surfaces[1].xyz[1]};
+    EXPECT_FALSE(backed(reversed));
+
+    const HitScene whole(surfaces, {});
+    const HitScene split(surfaces, {}, backed);
+    const std::array<Vec3, 2> directions{normalize(Vec3{-1, 0, 0.2f}), normalize(Vec3{0.3f, 0, -1})};
+    std::array<RayHit, 2> all, open;
+    split.nearestMany({16, 256, 8}, directions, 0, 128, all);
+    split.nearestOpenMany({16, 256, 8}, directions, 0, 128, open);
+    EXPECT_TRUE(all[0].hit);    // the wall ...
+    EXPECT_FALSE(open[0].hit);  // ... which the open part leaves out
+    EXPECT_TRUE(all[1].hit && open[1].hit);
+    EXPECT_EQ(all[1].distance, open[1].distance);  // the floor stays
+    // Without the test the open part is the whole scene.
+    whole.nearestOpenMany({16, 256, 8}, directions, 0, 128, open);
+    EXPECT_TRUE(open[0].hit && open[1].hit);
+    // Every ray that would meet the wall enters the solid behind it: dirt is the same either way.
+    for (const Vec3 origin : {Vec3{0.5f, 256, 1}, Vec3{16, 256, 1}, Vec3{40, 100, 1}, Vec3{3, 256, 30}})
+        EXPECT_EQ(dirtForSample(origin, {0, 0, 1}, split, DirtSettings{}, 0, 1.5f, &tree),
+                  dirtForSample(origin, {0, 0, 1}, whole, DirtSettings{}, 0, 1.5f, &tree));
+}
+
 TEST(Dirt, SkyFaceInFrontOfSolidDoesNotDarken) {
     // The wall is a sky face sealing the solid behind it.
     LightingShader sky;

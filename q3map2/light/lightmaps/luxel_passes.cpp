@@ -37,8 +37,10 @@ std::unique_ptr<LuxelPasses> prepareLuxelPasses(const LightContext& ctx, Log& lo
                         passes->dirt.scale, ", gain ", passes->dirt.gain));
     TraceSceneOptions sceneOptions;
     sceneOptions.patchShadows = o.patchShadows;
-    passes->scene = std::make_unique<HitScene>(ctx.surfaces, sceneOptions);
     if (ctx.tree && ctx.tree->hasNodes()) passes->tree = ctx.tree.get();
+    passes->scene = std::make_unique<HitScene>(ctx.surfaces, sceneOptions,
+                                               passes->dirty && passes->tree ? dirtSolidBacked(*passes->tree)
+                                                                             : SolidBackedTest{});
     return passes;
 }
 

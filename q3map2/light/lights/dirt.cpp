@@ -41,6 +41,18 @@ uint64_t dirtSeed(Vec3 origin) {
     return mix.next();
 }
 
+SolidBackedTest dirtSolidBacked(const BspTree& tree) {
+    constexpr float kBehind = 0.5f;
+    return [&tree](std::span<const Vec3, 3> t) {
+        const Vec3 back = cross(t[1] - t[0], t[2] - t[0]);  // clockwise from the front: points behind
+        const float area = length(back);
+        if (!(area > 1e-6f) || !std::isfinite(area)) return false;
+        const Vec3 shift = back * (kBehind / area);
+        const std::array<Vec3, 3> behind{t[0] + shift, t[1] + shift, t[2] + shift};
+        return tree.polygonInSolid(behind);
+    };
+}
+
 float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
                     float ignoreNear, const BspTree* tree) {
     Vec3 right, up;
@@ -92,19 +104,29 @@ float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtS
                            std::span(skyReach.data(), solidCount), std::span(skyBeforeSolid.data(), solidCount));
         for (size_t k = 0; k < solidCount; ++k) needsNearest[solidRay[k]] = skyBeforeSolid[k];
     }
-    std::array<Vec3, kMaxRays> queried;
-    std::array<size_t, kMaxRays> queriedRay;
-    size_t queriedCount = 0;
-    for (size_t i = 0; i < count; ++i)
-        if (entry[i] < 0 || needsNearest[i]) {
-            queried[queriedCount] = directions[i];
-            queriedRay[queriedCount++] = i;
-        }
+    // Rays the walk found open can meet only surfaces with no solid right behind them (the scene's
+    // open part); rays with a sky face before their entry take the whole scene.
     std::array<RayHit, kMaxRays> hits{};
-    std::array<RayHit, kMaxRays> queriedHits;
-    scene.nearestMany(origin, std::span(queried.data(), queriedCount), ignoreNear, depth,
-                      std::span(queriedHits.data(), queriedCount));
-    for (size_t k = 0; k < queriedCount; ++k) hits[queriedRay[k]] = queriedHits[k];
+    for (const bool open : {true, false}) {
+        if (!open && solidCount == 0) break;
+        std::array<Vec3, kMaxRays> queried;
+        std::array<size_t, kMaxRays> queriedRay;
+        size_t queriedCount = 0;
+        for (size_t i = 0; i < count; ++i)
+            if (open ? entry[i] < 0 : needsNearest[i] != 0) {
+                queried[queriedCount] = directions[i];
+                queriedRay[queriedCount++] = i;
+            }
+        if (queriedCount == 0) continue;
+        std::array<RayHit, kMaxRays> queriedHits;
+        const std::span<const Vec3> rays(queried.data(), queriedCount);
+        const std::span<RayHit> answers(queriedHits.data(), queriedCount);
+        if (open && tree)
+            scene.nearestOpenMany(origin, rays, ignoreNear, depth, answers);
+        else
+            scene.nearestMany(origin, rays, ignoreNear, depth, answers);
+        for (size_t k = 0; k < queriedCount; ++k) hits[queriedRay[k]] = queriedHits[k];
+    }
 
     float gathered = 0;
     for (size_t i = 0; i < count; ++i) {

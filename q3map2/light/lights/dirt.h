@@ -34,6 +34,12 @@ const std::vector<Vec3>& dirtConeDirections();
 // q3map2's DEFAULT_INHIBIT_RADIUS: dirt rays of luxels and vertexes pass surfaces this close.
 constexpr float kDirtInhibitRadius = 1.5f;
 
+// Triangles whose whole back, half a unit behind them (Quake 3 triangles wind clockwise seen from
+// the front), lies in structural solid. A dirt ray that meets one from the front enters that solid
+// just past it, where the BSP walk already stops it, so the rays the walk finds open need not test
+// them (but for grazing or ending within that half unit, which changes nothing measurable).
+SolidBackedTest dirtSolidBacked(const BspTree& tree);
+
 // Dirt factor (0 black .. 1 untouched) of one sample. `seed` drives the random directions of mode 1
 // (the same seed always gives the same directions); surfaces closer than `ignoreNear` do not count.
 // With `tree`, a ray that enters structural solid is stopped where it enters, even within

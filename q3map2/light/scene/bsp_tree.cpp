@@ -118,27 +118,38 @@ std::optional<Vec3> BspTree::segmentSolidEntry(Vec3 from, Vec3 to) const {
 
 void BspTree::segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, float length,
                                   std::span<std::optional<Vec3>> out) const {
+    const size_t count = std::min(directions.size(), out.size());
     // The ends lie within `length` of `from` but for the rounding of from + direction * length
     // (and of a direction's unit length): a slightly larger ball holds them all.
     const float radius = length * 1.001f + 0.01f;
     const bool shared = !bsp_.nodes.empty() && !compact_.empty() && std::isfinite(radius) &&
                         withinWalkRange(from - Vec3::splat(radius), from + Vec3::splat(radius));
-    const int32_t start = shared ? segmentTree_.sharedStart(from, radius) : 0;
-    if (shared && directions.size() <= kMaxFanRays) {
-        // Every segment joins two points of the fan's hull: when no walk inside it can meet solid,
-        // none of theirs does (a sample in open space skips all its walks at once).
-        std::array<Vec3, kMaxFanRays + 1> hull;
-        hull[0] = from;
-        for (size_t i = 0; i < directions.size(); ++i) hull[i + 1] = from + directions[i] * length;
-        if (segmentTree_.hullClear(std::span(hull.data(), directions.size() + 1))) {
-            for (size_t i = 0; i < directions.size() && i < out.size(); ++i) out[i] = std::nullopt;
-            return;
+    if (!shared || count > kMaxFanRays) {
+        const int32_t start = shared ? segmentTree_.sharedStart(from, radius) : 0;
+        for (size_t i = 0; i < count; ++i) {
+            const Vec3 to = from + directions[i] * length;
+            out[i] = shared && withinWalkRange(from, to) ? segmentTree_.entryFrom(start, from, to)
+                                                         : segmentSolidEntry(from, to);
         }
+        return;
     }
-    for (size_t i = 0; i < directions.size() && i < out.size(); ++i) {
-        const Vec3 to = from + directions[i] * length;
-        out[i] = shared && withinWalkRange(from, to) ? segmentTree_.entryFrom(start, from, to)
-                                                     : segmentSolidEntry(from, to);
+    // Every segment joins two points of its group's hull (the start and the group's ends): a group
+    // whose hull no walk inside can take into solid needs no walk at all (rays that point away from
+    // the nearest wall), and the others begin where their hull's walk first forks. Groups of
+    // neighbouring directions (for dirt's cone, a quarter of its azimuths) have small hulls.
+    constexpr size_t kGroup = 12;
+    std::array<Vec3, kMaxFanRays> ends;
+    for (size_t i = 0; i < count; ++i) ends[i] = from + directions[i] * length;
+    const int32_t ballStart = segmentTree_.sharedStart(from, radius);
+    std::array<Vec3, kGroup + 1> hull;
+    hull[0] = from;
+    for (size_t first = 0; first < count; first += kGroup) {
+        const size_t n = std::min(kGroup, count - first);
+        for (size_t i = 0; i < n; ++i) hull[i + 1] = ends[first + i];
+        const HullVerdict verdict = segmentTree_.hullWalk(std::span(hull.data(), n + 1));
+        const int32_t start = verdict.start.value_or(ballStart);
+        for (size_t i = first; i < first + n; ++i)
+            out[i] = verdict.clear ? std::nullopt : segmentTree_.entryFrom(start, from, ends[i]);
     }
 }
 
@@ -202,6 +213,68 @@ int BspTree::compactLeafFrom(int node, Vec3 point) const {
         if (top == 0 || leafCluster_[size_t(leaf)] != -1) return leaf;
         node = pending[--top];
     }
+}
+
+bool BspTree::polygonInSolid(std::span<const Vec3> polygon) const {
+    if (bsp_.nodes.empty() || polygon.size() < 3) return false;
+    for (const Vec3 p : polygon)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+    constexpr double kOnPlane = 0.01;
+    // Each node at most once per part of the polygon that reaches it: the budget stops cyclic or
+    // absurdly fragmenting trees, whose answer stays "not in solid".
+    size_t budget = 4 * bsp_.nodes.size() + 64;
+    struct Part {
+        int32_t node;
+        std::vector<Vec3> points;
+    };
+    std::vector<Part> pending{{0, std::vector<Vec3>(polygon.begin(), polygon.end())}};
+    std::vector<double> distances;
+    while (!pending.empty()) {
+        Part part = std::move(pending.back());
+        pending.pop_back();
+        while (part.node >= 0) {
+            if (size_t(part.node) >= bsp_.nodes.size() || budget-- == 0) return false;
+            const bsp::Node& n = bsp_.nodes[size_t(part.node)];
+            if (n.planeNum < 0 || size_t(n.planeNum) >= bsp_.planes.size()) return false;
+            const bsp::Plane& plane = bsp_.planes[size_t(n.planeNum)];
+            distances.clear();
+            bool anyFront = false, anyBack = false;
+            for (const Vec3 p : part.points) {
+                distances.push_back(planeDistance(plane, p));
+                anyFront = anyFront || distances.back() > -kOnPlane;
+                anyBack = anyBack || distances.back() < kOnPlane;
+            }
+            if (!anyBack) {
+                part.node = n.children[0];
+            } else if (!anyFront) {
+                part.node = n.children[1];
+            } else {
+                // Cut: the front part walks on here, the back part waits. Points near the plane
+                // belong to both, so neither part loses a sliver.
+                std::vector<Vec3> front, back;
+                const size_t count = part.points.size();
+                for (size_t i = 0; i < count; ++i) {
+                    const Vec3 a = part.points[i], b = part.points[(i + 1) % count];
+                    const double da = distances[i], db = distances[(i + 1) % count];
+                    if (da > -kOnPlane) front.push_back(a);
+                    if (da < kOnPlane) back.push_back(a);
+                    if ((da > kOnPlane && db < -kOnPlane) || (da < -kOnPlane && db > kOnPlane)) {
+                        const Vec3 mid = lerp(a, b, float(da / (da - db)));
+                        front.push_back(mid);
+                        back.push_back(mid);
+                    }
+                }
+                // A part may be a mere point or edge touching the plane's margin: it walks on too.
+                if (!back.empty()) pending.push_back({n.children[1], std::move(back)});
+                if (front.empty()) break;
+                part = {n.children[0], std::move(front)};
+            }
+        }
+        if (part.node >= 0) continue;
+        const size_t leaf = size_t(-(part.node + 1));
+        if (leaf < bsp_.leafs.size() && bsp_.leafs[leaf].cluster != -1) return false;
+    }
+    return true;
 }
 
 int BspTree::leafForPoint(Vec3 point) const {

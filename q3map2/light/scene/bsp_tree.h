@@ -87,6 +87,12 @@ public:
     // begun where the verdict says (the same answer, fewer nodes).
     bool segmentCrossesSolidFrom(const HullVerdict& hull, Vec3 from, Vec3 to) const;
 
+    // Whether every part of the convex polygon lies in leaves outside every cluster, the leaves
+    // segmentSolidEntry stops at. Conservative: parts within 0.01 units of a node's plane go down
+    // both sides, and a polygon the walk cannot settle within a bounded number of nodes (or a BSP
+    // without nodes) is not in solid.
+    bool polygonInSolid(std::span<const Vec3> polygon) const;
+
     bool brushIsOpaque(int brush) const { return brush >= 0 && brush < int(opaque_.size()) && opaque_[brush]; }
 
     // q3map2 ClusterForPointExt: the point's cluster, -1 outside the world, or -1 - brush when the

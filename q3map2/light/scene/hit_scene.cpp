@@ -3,8 +3,10 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "embree_ray.h"
 #include "log.h"
 
 namespace q3::light {
@@ -13,6 +15,7 @@ struct HitScene::EmbreeState {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     RTCScene skyScene = nullptr;  // the sky surfaces again, on their own
+    RTCScene openScene = nullptr;  // the triangles not backed by structural solid (null: the whole scene)
 };
 
 namespace {
@@ -23,30 +26,52 @@ RTCScene newScene(RTCDevice device) {
     return scene;
 }
 
-// Attaches the triangles of `s` to `scene` as one geometry; returns its id.
-unsigned attachSurface(RTCDevice device, RTCScene scene, const SceneSurface& s) {
+// Attaches the triangles of `s` (or the `only` ones, 3 indices each) to `scene` as one geometry;
+// returns its id.
+unsigned attachSurface(RTCDevice device, RTCScene scene, const SceneSurface& s,
+                       const std::vector<uint32_t>* only = nullptr) {
     const size_t numVerts = s.xyz.size();
-    const size_t numTris = s.triangles.size() / 3;
+    const std::vector<uint32_t>& triangles = only ? *only : s.triangles;
+    const size_t numTris = triangles.size() / 3;
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), numVerts));
     for (size_t i = 0; i < numVerts; ++i) s.xyz[i].toArray(vb + i * 3);
     auto* ib = static_cast<unsigned*>(
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), numTris));
-    for (size_t i = 0; i < numTris * 3; ++i) ib[i] = s.triangles[i] < numVerts ? s.triangles[i] : 0u;
+    for (size_t i = 0; i < numTris * 3; ++i) ib[i] = triangles[i] < numVerts ? triangles[i] : 0u;
     rtcCommitGeometry(geom);
     const unsigned id = rtcAttachGeometry(scene, geom);
     rtcReleaseGeometry(geom);
     return id;
 }
+
+// The triangles of `s` that `solidBacked` rejects (degenerate index triples are left to Embree,
+// which never hits them).
+std::vector<uint32_t> openTriangles(const SceneSurface& s,
+                                    const SolidBackedTest& solidBacked) {
+    std::vector<uint32_t> open;
+    for (size_t t = 0; t + 2 < s.triangles.size(); t += 3) {
+        const uint32_t a = s.triangles[t], b = s.triangles[t + 1], c = s.triangles[t + 2];
+        const size_t n = s.xyz.size();
+        if (a < n && b < n && c < n) {
+            const std::array<Vec3, 3> corners{s.xyz[a], s.xyz[b], s.xyz[c]};
+            if (solidBacked(std::span<const Vec3, 3>(corners))) continue;
+        }
+        open.insert(open.end(), {a, b, c});
+    }
+    return open;
+}
 }  // namespace
 
-HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
+HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options,
+                   const SolidBackedTest& solidBacked)
     : embree_(std::make_unique<EmbreeState>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
     embree_->skyScene = newScene(embree_->device);
+    if (solidBacked) embree_->openScene = newScene(embree_->device);
     for (const SceneSurface& s : surfaces) {
         if (!TraceScene::castsShadow(s, options)) continue;
         const LightingShader* sh = s.shader;
@@ -56,9 +81,16 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
         if (skyGeometry_.size() <= id) skyGeometry_.resize(id + 1, 0);
         skyGeometry_[id] = sky ? 1 : 0;
         if (sky) attachSurface(embree_->device, embree_->skyScene, s);
+        if (!embree_->openScene) continue;
+        const std::vector<uint32_t> open = openTriangles(s, solidBacked);
+        if (open.empty()) continue;
+        const unsigned openId = attachSurface(embree_->device, embree_->openScene, s, &open);
+        if (openSkyGeometry_.size() <= openId) openSkyGeometry_.resize(openId + 1, 0);
+        openSkyGeometry_[openId] = sky ? 1 : 0;
     }
     rtcCommitScene(embree_->scene);
     rtcCommitScene(embree_->skyScene);
+    if (embree_->openScene) rtcCommitScene(embree_->openScene);
     if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
         throw CompileError("embree: building the nearest-hit scene failed");
 }
@@ -66,26 +98,11 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
 HitScene::~HitScene() {
     if (embree_->scene) rtcReleaseScene(embree_->scene);
     if (embree_->skyScene) rtcReleaseScene(embree_->skyScene);
+    if (embree_->openScene) rtcReleaseScene(embree_->openScene);
     if (embree_->device) rtcReleaseDevice(embree_->device);
 }
 
 namespace {
-RTCRayHit makeRayHit(Vec3 from, Vec3 direction, float tnear, float tfar) {
-    RTCRayHit rh{};
-    rh.ray.org_x = from.x;
-    rh.ray.org_y = from.y;
-    rh.ray.org_z = from.z;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.tnear = tnear;
-    rh.ray.tfar = tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-}
-
 RayHit toRayHit(const RTCRayHit& rh, const std::vector<uint8_t>& skyGeometry) {
     RayHit out;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
@@ -99,24 +116,39 @@ RayHit toRayHit(const RTCRayHit& rh, const std::vector<uint8_t>& skyGeometry) {
 RayHit HitScene::nearest(Vec3 from, Vec3 direction, float tnear, float tfar) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh = makeRayHit(from, direction, tnear, tfar);
+    RTCRayHit rh{};
+    setRayHit(rh, from, direction, tnear, tfar);
     rtcIntersect1(embree_->scene, &context, &rh);
     return toRayHit(rh, skyGeometry_);
 }
 
-void HitScene::nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
-                           std::span<RayHit> out) const {
+namespace {
+// Nearest hits of a fan of rays from one point, as one coherent Embree stream per 64 rays.
+void nearestInScene(RTCScene scene, const std::vector<uint8_t>& skyGeometry, Vec3 from,
+                    std::span<const Vec3> directions, float tnear, float tfar, std::span<RayHit> out) {
     constexpr size_t kChunk = 64;
     RTCRayHit rays[kChunk];
     for (size_t start = 0; start < directions.size(); start += kChunk) {
         const size_t n = std::min(kChunk, directions.size() - start);
-        for (size_t i = 0; i < n; ++i) rays[i] = makeRayHit(from, directions[start + i], tnear, tfar);
+        for (size_t i = 0; i < n; ++i) setRayHit(rays[i], from, directions[start + i], tnear, tfar);
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        rtcIntersect1M(embree_->scene, &context, rays, static_cast<unsigned>(n), sizeof(RTCRayHit));
-        for (size_t i = 0; i < n && start + i < out.size(); ++i) out[start + i] = toRayHit(rays[i], skyGeometry_);
+        rtcIntersect1M(scene, &context, rays, static_cast<unsigned>(n), sizeof(RTCRayHit));
+        for (size_t i = 0; i < n && start + i < out.size(); ++i) out[start + i] = toRayHit(rays[i], skyGeometry);
     }
+}
+}  // namespace
+
+void HitScene::nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
+                           std::span<RayHit> out) const {
+    nearestInScene(embree_->scene, skyGeometry_, from, directions, tnear, tfar, out);
+}
+
+void HitScene::nearestOpenMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
+                               std::span<RayHit> out) const {
+    if (!embree_->openScene) return nearestMany(from, directions, tnear, tfar, out);
+    nearestInScene(embree_->openScene, openSkyGeometry_, from, directions, tnear, tfar, out);
 }
 
 void HitScene::skyAlongMany(Vec3 from, std::span<const Vec3> directions, float tnear, std::span<const float> tfars,
@@ -125,7 +157,7 @@ void HitScene::skyAlongMany(Vec3 from, std::span<const Vec3> directions, float t
     RTCRay rays[kChunk];
     for (size_t start = 0; start < directions.size(); start += kChunk) {
         const size_t n = std::min(kChunk, directions.size() - start);
-        for (size_t i = 0; i < n; ++i) rays[i] = makeRayHit(from, directions[start + i], tnear, tfars[start + i]).ray;
+        for (size_t i = 0; i < n; ++i) setRay(rays[i], from, directions[start + i], tnear, tfars[start + i]);
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

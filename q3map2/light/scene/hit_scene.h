@@ -4,6 +4,7 @@
 // lightfilter) do not stop these rays.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -19,10 +20,15 @@ struct RayHit {
     bool sky = false;  // the surface met is a sky surface
 };
 
+// Whether a triangle has structural solid right behind it (see HitScene::nearestOpenMany).
+using SolidBackedTest = std::function<bool(std::span<const Vec3, 3> triangle)>;
+
 class HitScene {
 public:
-    // Throws CompileError when Embree cannot be initialised.
-    HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options);
+    // Throws CompileError when Embree cannot be initialised. With `solidBacked`, the triangles it
+    // rejects also form a scene of their own for nearestOpenMany.
+    HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options,
+             const SolidBackedTest& solidBacked = {});
     ~HitScene();
     HitScene(const HitScene&) = delete;
     HitScene& operator=(const HitScene&) = delete;
@@ -33,6 +39,11 @@ public:
     // Embree ray stream; each result equals what nearest() gives for that direction.
     void nearestMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
                      std::span<RayHit> out) const;
+    // nearestMany among the triangles `solidBacked` rejected (all of them without it). For rays whose
+    // whole segment a BSP walk found clear of structural solid, these are the only surfaces they can
+    // meet, but for a backed face grazed or touched at the very end (a few tenths of a unit).
+    void nearestOpenMany(Vec3 from, std::span<const Vec3> directions, float tnear, float tfar,
+                         std::span<RayHit> out) const;
     // Whether a sky surface lies along each direction between tnear and tfars[i] (out[i] = 1),
     // whatever lies nearer: a query on the sky surfaces alone, far fewer than the whole world.
     void skyAlongMany(Vec3 from, std::span<const Vec3> directions, float tnear, std::span<const float> tfars,
@@ -41,7 +52,8 @@ public:
 private:
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
-    std::vector<uint8_t> skyGeometry_;  // per Embree geometry id: 1 = sky surface
+    std::vector<uint8_t> skyGeometry_;      // per Embree geometry id: 1 = sky surface
+    std::vector<uint8_t> openSkyGeometry_;  // the same for the scene of triangles not backed by solid
 };
 
 // Orthonormal (right, up) pair around `normal`, chosen as q3map2's dirt and floodlight code does so

@@ -11,6 +11,7 @@
 #include <span>
 #include <tuple>
 
+#include "embree_ray.h"
 #include "light_text.h"
 #include "log.h"
 
@@ -118,24 +119,6 @@ Vec3 translucentProduct(std::span<const TranslucentHit> sorted) {
         result *= Vec3{h.r, h.g, h.b};
     }
     return result;
-}
-
-// Fills `ray` in place (building a temporary and copying it stalls on store forwarding in the
-// batch loops).
-void setRay(RTCRay& ray, Vec3 from, Vec3 direction, float tnear, float tfar, unsigned id = 0,
-            uint32_t mask = kAllShadowGroups) {
-    ray.org_x = from.x;
-    ray.org_y = from.y;
-    ray.org_z = from.z;
-    ray.tnear = tnear;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.time = 0;
-    ray.tfar = tfar;
-    ray.mask = mask;
-    ray.id = id;
-    ray.flags = 0;
 }
 
 RTCRay makeRay(const ShadowRay& r, float tfar) {
