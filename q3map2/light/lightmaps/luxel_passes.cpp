@@ -1,5 +1,7 @@
 #include "luxel_passes.h"
 
+#include <oneapi/tbb/task_arena.h>
+
 #include "light_context.h"
 #include "light_text.h"
 #include "shader_info.h"
@@ -38,9 +40,10 @@ std::unique_ptr<LuxelPasses> prepareLuxelPasses(const LightContext& ctx, Log& lo
     TraceSceneOptions sceneOptions;
     sceneOptions.patchShadows = o.patchShadows;
     if (ctx.tree && ctx.tree->hasNodes()) passes->tree = ctx.tree.get();
-    passes->scene = std::make_unique<HitScene>(ctx.surfaces, sceneOptions,
-                                               passes->dirty && passes->tree ? dirtSolidBacked(*passes->tree)
-                                                                             : SolidBackedTest{});
+    const SolidBackedTest backed = passes->dirty && passes->tree ? dirtSolidBacked(*passes->tree) : SolidBackedTest{};
+    tbb::task_arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic).execute([&] {
+        passes->scene = std::make_unique<HitScene>(ctx.surfaces, sceneOptions, backed);
+    });
     return passes;
 }
 

@@ -1,6 +1,7 @@
 #include "hit_scene.h"
 
 #include <embree3/rtcore.h>
+#include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -71,8 +72,18 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
     if (!embree_->device) throw CompileError("embree: cannot create a ray-tracing device");
     embree_->scene = newScene(embree_->device);
     embree_->skyScene = newScene(embree_->device);
-    if (solidBacked) embree_->openScene = newScene(embree_->device);
-    for (const SceneSurface& s : surfaces) {
+    // The open triangles of every surface, found in parallel (in the caller's task arena).
+    std::vector<std::vector<uint32_t>> openOf;
+    if (solidBacked) {
+        embree_->openScene = newScene(embree_->device);
+        openOf.resize(surfaces.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i)
+                if (TraceScene::castsShadow(surfaces[i], options)) openOf[i] = openTriangles(surfaces[i], solidBacked);
+        });
+    }
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        const SceneSurface& s = surfaces[i];
         if (!TraceScene::castsShadow(s, options)) continue;
         const LightingShader* sh = s.shader;
         const bool sky = sh && sh->sky;
@@ -82,7 +93,7 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
         skyGeometry_[id] = sky ? 1 : 0;
         if (sky) attachSurface(embree_->device, embree_->skyScene, s);
         if (!embree_->openScene) continue;
-        const std::vector<uint32_t> open = openTriangles(s, solidBacked);
+        const std::vector<uint32_t>& open = openOf[i];
         if (open.empty()) continue;
         const unsigned openId = attachSurface(embree_->device, embree_->openScene, s, &open);
         if (openSkyGeometry_.size() <= openId) openSkyGeometry_.resize(openId + 1, 0);
