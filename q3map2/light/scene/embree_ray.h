@@ -28,8 +28,9 @@ inline void setRay(RTCRay& ray, Vec3 from, Vec3 direction, float tnear, float tf
 }
 
 // setRay, with the hit marked empty as Embree expects it before an intersection query.
-inline void setRayHit(RTCRayHit& rh, Vec3 from, Vec3 direction, float tnear, float tfar) {
-    setRay(rh.ray, from, direction, tnear, tfar);
+inline void setRayHit(RTCRayHit& rh, Vec3 from, Vec3 direction, float tnear, float tfar, unsigned id = 0,
+                      uint32_t mask = 0xFFFFFFFFu) {
+    setRay(rh.ray, from, direction, tnear, tfar, id, mask);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }

@@ -47,6 +47,14 @@ unsigned attachSurface(RTCDevice device, RTCScene scene, const SceneSurface& s,
     return id;
 }
 
+// Whether `s` stops nearest-hit rays: a shadow caster, but not a filter (alphashadow, lightfilter)
+// unless it is sky.
+bool stopsNearestRays(const SceneSurface& s, const TraceSceneOptions& options) {
+    if (!TraceScene::castsShadow(s, options)) return false;
+    const LightingShader* sh = s.shader;
+    return !sh || sh->sky || !(sh->alphaShadow || sh->lightFilter);
+}
+
 // The triangles of `s` that `solidBacked` rejects (degenerate index triples are left to Embree,
 // which never hits them).
 std::vector<uint32_t> openTriangles(const SceneSurface& s,
@@ -79,15 +87,13 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
         openOf.resize(surfaces.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i)
-                if (TraceScene::castsShadow(surfaces[i], options)) openOf[i] = openTriangles(surfaces[i], solidBacked);
+                if (stopsNearestRays(surfaces[i], options)) openOf[i] = openTriangles(surfaces[i], solidBacked);
         });
     }
     for (size_t i = 0; i < surfaces.size(); ++i) {
         const SceneSurface& s = surfaces[i];
-        if (!TraceScene::castsShadow(s, options)) continue;
-        const LightingShader* sh = s.shader;
-        const bool sky = sh && sh->sky;
-        if (!sky && sh && (sh->alphaShadow || sh->lightFilter)) continue;  // filters never stop these rays
+        if (!stopsNearestRays(s, options)) continue;
+        const bool sky = s.shader && s.shader->sky;
         const unsigned id = attachSurface(embree_->device, embree_->scene, s);
         if (skyGeometry_.size() <= id) skyGeometry_.resize(id + 1, 0);
         skyGeometry_[id] = sky ? 1 : 0;

@@ -31,7 +31,7 @@ public:
     // casters. False without a node tree.
     bool stops(Vec3 from, Vec3 to) const;
     // True when no segment inside the convex hull of `points` can stop as stops() walks it (see
-    // SolidSegmentTree::hullClear); false when unsure.
+    // SolidSegmentTree::hullWalk); false when unsure.
     bool hullClear(std::span<const Vec3> points) const { return hullWalk(points).clear; }
     // hullClear's answer, and where the walks of segments inside the hull may begin.
     HullVerdict hullWalk(std::span<const Vec3> points) const;

@@ -110,12 +110,11 @@ public:
     int32_t sharedStart(Vec3 center, float radius) const;
     // entry() begun at `node` (root or a sharedStart() whose ball holds the segment).
     std::optional<Vec3> entryFrom(int32_t node, Vec3 from, Vec3 to) const;
-    // True when no segment between two points of the convex hull of `points` can reach a stopping
+    // `clear` when no segment between two points of the convex hull of `points` can reach a stopping
     // leaf as crosses() walks it (margins cover the rounding of the walk's split points), so a
-    // batch of rays inside that hull needs no walk of its own. False when some may, when the tree
-    // is not usable, or when the answer would take more than a bounded number of nodes.
-    bool hullClear(std::span<const Vec3> points) const { return hullWalk(points).clear; }
-    // hullClear's answer, and where the segments' walks may begin when it is false.
+    // batch of rays inside that hull needs no walk of its own; not clear when some may, when the
+    // tree is not usable, or when the answer would take more than a bounded number of nodes. When
+    // not clear, where the segments' walks may begin.
     HullVerdict hullWalk(std::span<const Vec3> points) const;
 
 private:

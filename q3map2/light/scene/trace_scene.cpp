@@ -298,9 +298,7 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
     if (r.toSky) {
         if (skyRecords_.empty()) return {};
         RTCRayHit rh{};
-        rh.ray = makeRay(r, r.tfar);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        setRayHit(rh, r.from, r.direction, r.tnear, r.tfar, 0, r.mask);
         rtcIntersect1(embree_->skyScene, &plain, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
@@ -416,10 +414,8 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
             setRay(occlusionBuffer[numOcclusion++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
                    r.mask);
         } else if (!skyRecords_.empty()) {
-            RTCRayHit& rh = toSkyBuffer[numToSky++];
-            setRay(rh.ray, r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i), r.mask);
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            setRayHit(toSkyBuffer[numToSky++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
+                      r.mask);
         }
     }
     if (!skyRecords_.empty() && numOcclusion > 0) {
