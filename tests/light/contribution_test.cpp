@@ -366,20 +366,34 @@ TEST(AreaLight, ContributionFromSurfaceLight) {
     EXPECT_FALSE(lightToSample(lights[0], SamplePoint{{0, 0, 200}, {0, 0, -1}}, env));
 }
 
+// Random trials of the whole-box test against a small -fast emitter.
+struct DarkBoxTrials {
+    std::vector<Light> lights = squareEmitterLights(5000, 8, 0, 1);
+    LightingEnv env;
+    std::mt19937 rng;
+    std::uniform_real_distribution<float> unit{-1, 1};
+    explicit DarkBoxTrials(unsigned seed) : rng(seed) { env.settings.forceFast = true; }
+    Vec3 randomVec3() { return {unit(rng), unit(rng), unit(rng)}; }
+    // Probe k of a box: its 8 corners first, then points inside.
+    Vec3 probe(const Bounds& box, int k) {
+        if (k < 8)
+            return {(k & 1) ? box.maxs.x : box.mins.x, (k & 2) ? box.maxs.y : box.mins.y, (k & 4) ? box.maxs.z : box.mins.z};
+        return box.mins + (box.maxs - box.mins) * (randomVec3() * 0.5f + Vec3{0.5f, 0.5f, 0.5f});
+    }
+};
+
 // A box the whole-box test calls dark holds no luxel or grid point that the light reaches: random
 // boxes around a small -fast emitter, probed at their corners and inside, facing every way.
 TEST(AreaLight, DarkBoxesHoldNoLitPoint) {
-    const std::vector<Light> lights = squareEmitterLights(5000, 8, 0, 1);
+    DarkBoxTrials t(77);
+    const std::vector<Light>& lights = t.lights;
     ASSERT_FALSE(lights.empty());
-    LightingEnv env;
-    env.settings.forceFast = true;
-    std::mt19937 rng(77);
-    std::uniform_real_distribution<float> unit(-1, 1);
+    LightingEnv& env = t.env;
     int dark = 0, lit = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         const Light& light = lights[size_t(trial) % lights.size()];
-        const Vec3 centre = Vec3{unit(rng), unit(rng), unit(rng)} * 400.0f;
-        const Vec3 half = Vec3{unit(rng) + 1, unit(rng) + 1, unit(rng) + 1} * 40.0f;
+        const Vec3 centre = t.randomVec3() * 400.0f;
+        const Vec3 half = (t.randomVec3() + Vec3{1, 1, 1}) * 40.0f;
         const Bounds box{centre - half, centre + half};
         if (!areaLightSurelyDarkIn(light, box, env.settings)) {
             ++lit;
@@ -387,10 +401,8 @@ TEST(AreaLight, DarkBoxesHoldNoLitPoint) {
         }
         ++dark;
         for (int k = 0; k < 24; ++k) {
-            const Vec3 f{unit(rng) * 0.5f + 0.5f, unit(rng) * 0.5f + 0.5f, unit(rng) * 0.5f + 0.5f};
-            Vec3 p = box.mins + (box.maxs - box.mins) * f;
-            if (k < 8) p = {(k & 1) ? box.maxs.x : box.mins.x, (k & 2) ? box.maxs.y : box.mins.y, (k & 4) ? box.maxs.z : box.mins.z};
-            const Vec3 normal = normalize(light.origin - p + Vec3{unit(rng), unit(rng), unit(rng)} * 100.0f);
+            const Vec3 p = t.probe(box, k);
+            const Vec3 normal = normalize(light.origin - p + t.randomVec3() * 100.0f);
             ASSERT_FALSE(lightToSample(light, SamplePoint{p, normal, -1, true}, env)) << trial << " " << k;
             ASSERT_FALSE(lightToGridPoint(light, p, -1, env)) << trial << " " << k;
         }
@@ -408,6 +420,39 @@ TEST(AreaLight, DarkBoxesHoldNoLitPoint) {
     EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], thin, env.settings));
     env.settings.faster = true;  // -faster lights grid points behind emitters: no box is skipped
     EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], Bounds{{-50, -50, -90}, {50, 50, -0.2f}}, env.settings));
+}
+
+// With the normal that every sample of the box shares, the whole-box test also bounds the
+// receiver's cosine: it calls more boxes dark, and still none that holds a lit sample of that normal.
+TEST(AreaLight, DarkBoxesWithOneNormalHoldNoLitSample) {
+    DarkBoxTrials t(78);
+    const std::vector<Light>& lights = t.lights;
+    ASSERT_FALSE(lights.empty());
+    const LightingEnv& env = t.env;
+    int darkWithNormal = 0, darkWithout = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const Light& light = lights[size_t(trial) % lights.size()];
+        const Vec3 centre = t.randomVec3() * 300.0f;
+        // Flat boxes, as a tile of one planar lightmap is, and some thick ones.
+        Vec3 half = (t.randomVec3() + Vec3{1, 1, 1}) * 30.0f;
+        half[size_t(trial % 3)] *= trial % 2 ? 0.01f : 1.0f;
+        const Bounds box{centre - half, centre + half};
+        const Vec3 normal = normalize(t.randomVec3() + Vec3{0, 0, 0.01f});
+        if (areaLightSurelyDarkIn(light, box, env.settings)) ++darkWithout;
+        if (!areaLightSurelyDarkIn(light, box, env.settings, &normal)) continue;
+        ++darkWithNormal;
+        for (int k = 0; k < 24; ++k) {
+            const Vec3 p = t.probe(box, k);
+            ASSERT_FALSE(lightToSample(light, SamplePoint{p, normal, -1, true}, env)) << trial << " " << k;
+        }
+    }
+    EXPECT_GT(darkWithNormal, darkWithout + 100);
+    // A strip of wall off to the side of the emitter, facing along it: its samples see the
+    // emitter nearly edge-on, which only the receiver's cosine tells.
+    const Bounds wall{{90, -2, 10}, {90.5f, 2, 20}};
+    const Vec3 along{0, 1, 0};
+    EXPECT_FALSE(areaLightSurelyDarkIn(lights[0], wall, env.settings));
+    EXPECT_TRUE(areaLightSurelyDarkIn(lights[0], wall, env.settings, &along));
 }
 
 TEST(GridPoint, PointLightHasNoAngleTerm) {

@@ -221,6 +221,7 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         std::vector<int32_t> rayOf;
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
+        std::vector<Bounds> runBoxes;
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -231,13 +232,24 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
     deferred.deferredRays = env.scene ? &s.rays : nullptr;
     LightingEnv deferredClear = deferred;
     deferredClear.clearOfSolid = true;
+    // Area lights are culled for the whole block before; runs of a few points, boxed tightly, drop
+    // most of the pairs the per-point bound would drop, at one test per run.
+    constexpr size_t kRun = 8;
+    s.runBoxes.assign((np + kRun - 1) / kRun, Bounds{});
+    for (size_t p = 0; p < np; ++p) s.runBoxes[p / kRun].add(origins[p]);
     for (size_t k = 0; k < nl; ++k) {
-        if (!includes(lights[candidates[k]])) continue;
+        const Light& light = lights[candidates[k]];
+        if (!includes(light)) continue;
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
+        const bool area = light.type == LightType::Area;
         for (size_t p = 0; p < np; ++p) {
+            if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {
+                p += kRun - 1;
+                continue;
+            }
             const size_t before = s.rays.size();
             std::optional<LightContribution> c =
-                lightToGridPoint(lights[candidates[k]], origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
+                lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);
             if (!c) {
                 s.rays.resize(before);
                 continue;

@@ -41,6 +41,7 @@ std::array<Vec3, 2> normalVectors(Vec3 normal) {
 struct LuxelTiles {
     std::vector<Bounds> bounds;
     std::vector<std::vector<uint32_t>> luxels;  // indices of the luxels with a sample point
+    std::vector<std::optional<Vec3>> normals;   // the one normal of every sample of the tile, if any
 
     LuxelTiles(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int edge) {
         for (int ty = 0; ty < h; ty += edge)
@@ -55,8 +56,15 @@ struct LuxelTiles {
                         members.push_back(static_cast<uint32_t>(i));
                     }
                 if (members.empty()) continue;
+                std::optional<Vec3> normal = points[members[0]]->normal;
+                for (uint32_t i : members)
+                    if (!(points[i]->normal == *normal)) {
+                        normal.reset();
+                        break;
+                    }
                 bounds.push_back(b);
                 luxels.push_back(std::move(members));
+                normals.push_back(normal);
             }
     }
 
@@ -67,7 +75,7 @@ struct LuxelTiles {
         out.clear();
         for (size_t t = 0; t < bounds.size(); ++t)
             if (lightReachesBounds(light, bounds[t], envelope) &&
-                !areaLightSurelyDarkIn(light, bounds[t], settings))
+                !areaLightSurelyDarkIn(light, bounds[t], settings, normals[t] ? &*normals[t] : nullptr))
                 out.push_back(static_cast<uint32_t>(t));
     }
     template <typename Visit>

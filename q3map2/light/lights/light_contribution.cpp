@@ -133,18 +133,21 @@ bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
     return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
 }
 
-bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings) {
+bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings,
+                           const Vec3* receiverNormal) {
     if (light.type != LightType::Area || light.controlled || settings.faster || box.empty()) return false;
-    // The per-point tests drop points more than 1 unit behind a one-sided emitter.
-    if (!light.twoSided) {
-        float farthest = -light.planeDist;
-        for (int k = 0; k < 3; ++k)
-            farthest += light.normal[k] * (light.normal[k] >= 0 ? box.maxs[k] : box.mins[k]);
-        if (farthest < -1.01f) return true;
+    // The box's least and greatest height over the emitter's plane.
+    float lowest = -light.planeDist, highest = -light.planeDist;
+    for (int k = 0; k < 3; ++k) {
+        lowest += light.normal[k] * (light.normal[k] >= 0 ? box.mins[k] : box.maxs[k]);
+        highest += light.normal[k] * (light.normal[k] >= 0 ? box.maxs[k] : box.mins[k]);
     }
+    // The per-point tests drop points more than 1 unit behind a one-sided emitter.
+    if (!light.twoSided && highest < -1.01f) return true;
     if (!(light.fast || settings.forceFast) || !(light.add > 0) || light.emitter.radius < 0) return false;
     // Points within 8 units of the emitter's plane are pushed to 8 in front of it: under 16 units.
-    constexpr float kPushReach = 16.0f;
+    // A box wholly beyond that band (with a unit to spare for the roundings) holds no pushed point.
+    const float kPushReach = (lowest >= 9.0f || highest <= -9.0f) ? 0.0f : 16.0f;
     // The nearer of two lower bounds of the distance between the box and the polygon: to the
     // emitter's sphere and to its corners' box.
     const Vec3 nearestInBox = vmin(vmax(light.emitter.center, box.mins), box.maxs);
@@ -167,7 +170,23 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
         }
         emitterCosine = std::min(1.0f, (height + kPushReach + light.emitter.flatness) / nearest);
     }
-    const float bound = light.emitter.area * emitterCosine / (kPi * nearest * nearest) * 1.1f + 1e-5f;
+    // The receiver's: the greatest |normal . (corner - point)| over the emitter's corner box and the
+    // box, over the nearest distance (a push moves a point by under kPushReach).
+    float receiverCosine = 1;
+    if (receiverNormal) {
+        const Vec3 n = *receiverNormal;
+        float emitterLo = 0, emitterHi = 0, boxLo = 0, boxHi = 0;
+        for (int k = 0; k < 3; ++k) {
+            const bool up = n[k] >= 0;
+            emitterLo += n[k] * (up ? light.emitter.box.mins[k] : light.emitter.box.maxs[k]);
+            emitterHi += n[k] * (up ? light.emitter.box.maxs[k] : light.emitter.box.mins[k]);
+            boxLo += n[k] * (up ? box.mins[k] : box.maxs[k]);
+            boxHi += n[k] * (up ? box.maxs[k] : box.mins[k]);
+        }
+        const float reach = std::max(std::fabs(emitterHi - boxLo), std::fabs(emitterLo - boxHi)) + kPushReach;
+        receiverCosine = std::min(1.0f, reach / nearest);
+    }
+    const float bound = light.emitter.area * receiverCosine * emitterCosine / (kPi * nearest * nearest) * 1.1f + 1e-5f;
     return bound * light.add <= light.falloffTolerance;
 }
 

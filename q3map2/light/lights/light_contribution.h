@@ -57,8 +57,10 @@ struct LightingEnv {
 // Whether area light `light` surely lights no luxel or grid point inside `box`, so a caller may
 // skip the box at once: the box lies behind a one-sided emitter, or the per-point
 // formFactorUpperBound test, taken over the whole box (with room for the push of points near the
-// emitter's plane), finds no more than the -fast tolerance.
-bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings);
+// emitter's plane), finds no more than the -fast tolerance. `receiverNormal`, when every point of
+// the box is a sample with that normal, also bounds the receiver's cosine.
+bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings,
+                           const Vec3* receiverNormal = nullptr);
 
 // Whether the visibility data rule out any light of `light` at a point of `cluster`: a cluster that
 // cannot see the light's cluster, or a sun whose sky the cluster cannot see.
