@@ -35,8 +35,13 @@ public:
                 b.brushSides.push_back({addPlane(maxN, box[3 + axis]), 0});
                 b.brushSides.push_back({addPlane(minN, -box[axis]), 0});
             }
+            // The second box loses a corner to an oblique side.
+            if (&box == &boxes[1]) {
+                const float oblique[3] = {0.6f, 0.8f, 0};
+                b.brushSides.push_back({addPlane(oblique, 80), 0});
+            }
             b.leafBrushes.push_back(int(b.brushes.size()));
-            b.brushes.push_back({first, 6, 0});
+            b.brushes.push_back({first, int(b.brushSides.size()) - first, 0});
         }
         for (bsp::Leaf& leaf : b.leafs) leaf.numLeafBrushes = int(b.brushes.size());
         b.models = {{{-512, -512, -512}, {512, 512, 512}, 0, 0, 0, int(b.brushes.size())}};
@@ -101,6 +106,38 @@ std::vector<Vec3> probePoints(RandomTree& t) {
         points.push_back(p);
     }
     return points;
+}
+
+// clusterForPointExt against the definition: the leaf's cluster unless some opaque brush listed
+// in the leaf has every side within `epsilon` of the point (the distances in double).
+TEST(BspTreeWalk, PointInBrushTestsMatchTheirDefinition) {
+    for (uint32_t seed = 1; seed <= 6; ++seed) {
+        RandomTree t(seed);
+        const BspTree tree(t.b);
+        std::vector<Vec3> points = probePoints(t);
+        for (int i = 0; i < 2000; ++i)  // around the brushes, on and near their sides
+            points.push_back({float(t.below(241) - 120) * 0.5f + t.uniform(-0.2f, 0.2f) * float(i % 2),
+                              float(t.below(241) - 120) * 0.5f, float(t.below(321) - 110) * 0.5f});
+        for (const float epsilon : {-0.125f, 0.0f, 0.125f})
+            for (size_t i = 0; i < points.size(); ++i) {
+                const Vec3 p = points[i];
+                const int leaf = tree.leafForPoint(p);
+                int expected = t.b.leafs[size_t(leaf)].cluster < 0 ? -1 : t.b.leafs[size_t(leaf)].cluster;
+                for (int k = 0; expected >= 0 && k < t.b.leafs[size_t(leaf)].numLeafBrushes; ++k) {
+                    const int brush = t.b.leafBrushes[size_t(t.b.leafs[size_t(leaf)].firstLeafBrush + k)];
+                    const bsp::Brush& br = t.b.brushes[size_t(brush)];
+                    bool inside = true;
+                    for (int s = 0; s < br.numSides; ++s) {
+                        const bsp::Plane& pl = t.b.planes[size_t(t.b.brushSides[size_t(br.firstSide + s)].planeNum)];
+                        const double d = double(pl.normal[0]) * p.x + double(pl.normal[1]) * p.y +
+                                         double(pl.normal[2]) * p.z - double(pl.dist);
+                        if (d > double(epsilon)) inside = false;
+                    }
+                    if (inside) expected = -1 - brush;
+                }
+                ASSERT_EQ(tree.clusterForPointExt(p, epsilon), expected) << seed << " " << i << " " << epsilon;
+            }
+    }
 }
 
 TEST(BspTreeWalk, CompactWalksMatchThePlainOnes) {

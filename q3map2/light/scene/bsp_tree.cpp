@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <iterator>
+#include <limits>
 #include <tuple>
 
 namespace q3::light {
@@ -62,17 +64,22 @@ void BspTree::buildLeafSolids() {
             const int b = bsp_.leafBrushes[lb];
             if (!brushIsOpaque(b)) continue;
             const bsp::Brush& brush = bsp_.brushes[b];
-            LeafSolid solid{b, uint32_t(solidPlanes_.size()), 0};
+            LeafSolid solid{b, uint32_t(solidPlanes_.size()), 0, 0, {}};
+            std::fill(std::begin(solid.box), std::end(solid.box), std::numeric_limits<double>::infinity());
             // Axial sides first: they are the brush's box, which most points lie outside of, and
             // each takes one subtraction (the order of the tests does not change their answer).
             for (const bool axial : {true, false})
                 for (int k = 0; k < brush.numSides; ++k) {
                     const bsp::Plane& plane = bsp_.planes[bsp_.brushSides[brush.firstSide + k].planeNum];
                     const int32_t axis = axialPlaneCode(plane.normal);
-                    if ((axis < 6) == axial)
-                        solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist, axis});
+                    if ((axis < 6) != axial) continue;
+                    solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist, axis});
+                    if (axial) solid.box[axis] = std::min(solid.box[axis], double(plane.dist));
                 }
             solid.numPlanes = uint32_t(solidPlanes_.size()) - solid.firstPlane;
+            solid.numAxial = 0;
+            while (solid.numAxial < solid.numPlanes && solidPlanes_[solid.firstPlane + solid.numAxial].axis < 6)
+                ++solid.numAxial;
             leafSolids_.push_back(solid);
         }
     }
@@ -357,8 +364,17 @@ int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     const double limit = epsilon;
     for (uint32_t i = leafSolidStart_[size_t(leafNum)]; i < leafSolidStart_[size_t(leafNum) + 1]; ++i) {
         const LeafSolid& solid = leafSolids_[i];
+        // A finite point outside the box is outside the brush (the same subtractions as the axial
+        // sides' own tests); inside it, only the other sides remain.
+        uint32_t first = solid.firstPlane;
+        if (finite) {
+            if (p.v[0] - solid.box[0] > limit || p.v[1] - solid.box[1] > limit || p.v[2] - solid.box[2] > limit ||
+                p.v[3] - solid.box[3] > limit || p.v[4] - solid.box[4] > limit || p.v[5] - solid.box[5] > limit)
+                continue;
+            first += solid.numAxial;
+        }
         bool inside = true;
-        for (uint32_t k = solid.firstPlane; k < solid.firstPlane + solid.numPlanes && inside; ++k) {
+        for (uint32_t k = first; k < solid.firstPlane + solid.numPlanes && inside; ++k) {
             const SidePlane& s = solidPlanes_[k];
             const double d = finite && s.axis < 6 ? p.v[s.axis] - double(s.dist)
                                                   : double(s.normal[0]) * p.v[0] + double(s.normal[1]) * p.v[1] +

@@ -146,7 +146,11 @@ private:
     };
     struct LeafSolid {
         int32_t brush;
-        uint32_t firstPlane, numPlanes;  // in solidPlanes_
+        uint32_t firstPlane, numPlanes;  // in solidPlanes_, the axial ones first
+        uint32_t numAxial;
+        // The axial sides as a box: per axis code 0..5 the least distance of its sides (+inf for
+        // none), so that p.v[code] - box[code] is the largest of their distances, bit for bit.
+        double box[6];
     };
     std::vector<uint32_t> leafSolidStart_;  // per leaf + 1: its range of leafSolids_
     std::vector<LeafSolid> leafSolids_;
