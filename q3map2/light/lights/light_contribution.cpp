@@ -119,6 +119,12 @@ std::optional<LightContribution> controlledContribution(const Light& light, Vec3
     return finish(light, value, l, occlusion(env, point, light.origin));
 }
 
+// pvsCulled, inlined where every sample asks it.
+[[gnu::always_inline]] inline bool pvsCulledInline(const Light& light, int cluster, const LightingEnv& env) {
+    if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
+    return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
+}
+
 // Most area-light pairs inside the envelope end below the -fast tolerance: the cheap bound rejects
 // those before the exact form factor, with the outcome the exact factor would give.
 bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, const LightingEnv& env) {
@@ -129,8 +135,7 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
 }  // namespace
 
 bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
-    if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
-    return env.tree && cluster >= 0 && light.cluster >= 0 && !env.tree->clusterVisible(cluster, light.cluster);
+    return pvsCulledInline(light, cluster, env);
 }
 
 bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const ContributionSettings& settings,
@@ -217,7 +222,7 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
         if (env.settings.sunOnly) return std::nullopt;
         if (!sample.twoSided && dot(light.origin, n) - dot(p, n) < 0) return std::nullopt;  // behind the surface
     }
-    if (pvsCulled(light, sample.cluster, env)) return std::nullopt;
+    if (pvsCulledInline(light, sample.cluster, env)) return std::nullopt;
     if (light.controlled) return controlledContribution(light, p, &n, sample.twoSided, env);
 
     switch (light.type) {
@@ -301,7 +306,7 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
                                                   const LightingEnv& env, float envelope) {
     if (!light.affectsGrid) return std::nullopt;
     if (light.type != LightType::Sun && env.settings.sunOnly) return std::nullopt;
-    if (pvsCulled(light, cluster, env)) return std::nullopt;
+    if (pvsCulledInline(light, cluster, env)) return std::nullopt;
     if (light.controlled) return controlledContribution(light, origin, nullptr, false, env);
 
     if (light.type == LightType::Sun) {

@@ -340,15 +340,6 @@ int BspTree::areaForPoint(Vec3 point) const {
 
 int BspTree::numClusters() const { return numClusters_; }
 
-bool BspTree::clusterVisible(int from, int to) const {
-    if (from < 0 || to < 0) return false;
-    if (from == to) return true;
-    if (bsp_.visibility.size() <= 8) return true;  // not vised: everything sees everything
-    const size_t byte = 8 + size_t(from) * size_t(bytesPerCluster_) + size_t(to >> 3);
-    if (from >= numClusters_ || to >= numClusters_ || byte >= bsp_.visibility.size()) return false;
-    return (bsp_.visibility[byte] & (1u << (to & 7))) != 0;
-}
-
 int BspTree::clusterForPointExt(Vec3 point, float epsilon) const {
     return clusterInLeaf(leafForPoint(point), point, epsilon);
 }

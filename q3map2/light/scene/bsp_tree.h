@@ -61,7 +61,16 @@ public:
 
     int numClusters() const;
     // PVS test; true when the visibility lump is absent (not vised), false for a negative cluster.
-    bool clusterVisible(int from, int to) const;
+    // Inline: every luxel asks it of every light that reaches it.
+    bool clusterVisible(int from, int to) const {
+        if (from < 0 || to < 0) return false;
+        if (from == to) return true;
+        const std::vector<uint8_t>& vis = bsp_.visibility;
+        if (vis.size() <= 8) return true;  // not vised: everything sees everything
+        if (from >= numClusters_ || to >= numClusters_) return false;
+        const size_t byte = 8 + size_t(from) * size_t(bytesPerCluster_) + size_t(to >> 3);
+        return byte < vis.size() && (vis[byte] & (1u << (to & 7))) != 0;
+    }
 
     // Whether the segment crosses a leaf outside every cluster (structural solid or the void), walked
     // front to back through the node tree with q3map2's 0.1-unit on-plane epsilon (its TraceLine_r
