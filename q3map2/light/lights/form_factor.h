@@ -2,6 +2,9 @@
 // far pairs skip it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <span>
 
 #include "lights.h"
@@ -17,9 +20,38 @@ float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> wi
 // The one-edge-at-a-time form: the reference for the vector form, and its fallback.
 float pointToPolygonFormFactorScalar(Vec3 point, Vec3 normal, std::span<const Vec3> winding);
 
+namespace detail {
+
+// area x receiver cosine x emitter cosine / (pi d^2), every factor bounded over the polygon, from
+// `nearest`, no more than the distance to any of its points, and `reach`, no less than any
+// |normal . (corner - point)|. Unbounded closer than one unit.
+inline float boundFrom(const EmitterBounds& b, Vec3 point, float nearest, float reach) {
+    if (!(nearest > 1.0f)) return std::numeric_limits<float>::infinity();
+    const float receiver = std::min(1.0f, reach / nearest);
+    const float emitter =
+        b.flat ? std::min(1.0f, (std::fabs(dot(b.center - point, b.planeNormal)) + b.flatness) / nearest) : 1.0f;
+    return b.area * receiver * emitter / (kPi * nearest * nearest);
+}
+
+}  // namespace detail
+
 // A bound no smaller than |pointToPolygonFormFactor(point, normal, winding)| for the polygon of
 // `bounds` (unit `normal`): area x cosine bounds / (pi d^2) from the nearest possible distance d.
-// Infinity when the point may lie inside the bounding sphere or the bounds are unknown.
-float formFactorUpperBound(const EmitterBounds& bounds, Vec3 point, Vec3 normal);
+// Infinity when the point may lie inside the bounding sphere or the bounds are unknown. Inline:
+// every (luxel, area light) pair in reach asks it.
+inline float formFactorUpperBound(const EmitterBounds& b, Vec3 point, Vec3 normal) {
+    if (b.radius < 0) return std::numeric_limits<float>::infinity();
+    // The corners' box: the nearest of its points, and the normal's extremes over its corners.
+    const Vec3 nearestInBox = vmin(vmax(point, b.box.mins), b.box.maxs);
+    float lo = 0, hi = 0;
+    for (int k = 0; k < 3; ++k) {
+        const float a = normal[k] * (b.box.mins[k] - point[k]), c = normal[k] * (b.box.maxs[k] - point[k]);
+        lo += std::min(a, c);
+        hi += std::max(a, c);
+    }
+    // Room for the float rounding of the exact evaluation.
+    const float reach = std::max(std::fabs(lo), std::fabs(hi));
+    return detail::boundFrom(b, point, distance(nearestInBox, point), reach) * 1.02f + 1e-5f;
+}
 
 }  // namespace q3::light
