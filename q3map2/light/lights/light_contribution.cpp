@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "angle.h"
 #include "bsp_tree.h"
@@ -119,6 +120,16 @@ std::optional<LightContribution> controlledContribution(const Light& light, Vec3
     return finish(light, value, l, occlusion(env, point, light.origin));
 }
 
+// The least and greatest of `offset` + n . p over the points p of `box`, summed axis by axis.
+std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) {
+    float lo = offset, hi = offset;
+    for (int k = 0; k < 3; ++k) {
+        lo += n[k] * (n[k] >= 0 ? box.mins[k] : box.maxs[k]);
+        hi += n[k] * (n[k] >= 0 ? box.maxs[k] : box.mins[k]);
+    }
+    return {lo, hi};
+}
+
 // pvsCulled, inlined where every sample asks it.
 [[gnu::always_inline]] inline bool pvsCulledInline(const Light& light, int cluster, const LightingEnv& env) {
     if (light.type == LightType::Sun) return env.skies && !env.skies->maySeeSky(cluster, light.skyIndex);
@@ -142,17 +153,13 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
                            const Vec3* receiverNormal) {
     if (light.type != LightType::Area || light.controlled || settings.faster || box.empty()) return false;
     // The box's least and greatest height over the emitter's plane.
-    float lowest = -light.planeDist, highest = -light.planeDist;
-    for (int k = 0; k < 3; ++k) {
-        lowest += light.normal[k] * (light.normal[k] >= 0 ? box.mins[k] : box.maxs[k]);
-        highest += light.normal[k] * (light.normal[k] >= 0 ? box.maxs[k] : box.mins[k]);
-    }
+    const auto [lowest, highest] = rangeAlong(light.normal, box, -light.planeDist);
     // The per-point tests drop points more than 1 unit behind a one-sided emitter.
     if (!light.twoSided && highest < -1.01f) return true;
     if (!(light.fast || settings.forceFast) || !(light.add > 0) || light.emitter.radius < 0) return false;
     // Points within 8 units of the emitter's plane are pushed to 8 in front of it: under 16 units.
     // A box wholly beyond that band (with a unit to spare for the roundings) holds no pushed point.
-    const float kPushReach = (lowest >= 9.0f || highest <= -9.0f) ? 0.0f : 16.0f;
+    const float pushReach = (lowest >= 9.0f || highest <= -9.0f) ? 0.0f : 16.0f;
     // The nearer of two lower bounds of the distance between the box and the polygon: to the
     // emitter's sphere and to its corners' box.
     const Vec3 nearestInBox = vmin(vmax(light.emitter.center, box.mins), box.maxs);
@@ -160,11 +167,11 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
     for (int k = 0; k < 3; ++k)
         gap[k] = std::max({0.0f, light.emitter.box.mins[k] - box.maxs[k], box.mins[k] - light.emitter.box.maxs[k]});
     const float nearest = std::max(distance(nearestInBox, light.emitter.center) - light.emitter.radius, length(gap)) -
-                          kPushReach;
+                          pushReach;
     if (!(nearest > 1.0f)) return false;
-    // The receiver's cosine at most 1; the emitter's at most the box's greatest height over the
-    // emitter's plane (pushed points sit 8 units above it) over the nearest distance. The extra
-    // 10 % keeps this bound above every per-point one whatever their roundings.
+    // The emitter's cosine is at most the box's greatest height over the emitter's plane (pushed
+    // points sit 8 units above it) over the nearest distance. The extra 10 % in the bound below
+    // keeps it above every per-point one whatever their roundings.
     float emitterCosine = 1;
     if (light.emitter.flat) {
         float height = 0;
@@ -173,22 +180,15 @@ bool areaLightSurelyDarkIn(const Light& light, const Bounds& box, const Contribu
                          (corner & 4) ? box.maxs.z : box.mins.z};
             height = std::max(height, std::fabs(dot(c - light.emitter.center, light.emitter.planeNormal)));
         }
-        emitterCosine = std::min(1.0f, (height + kPushReach + light.emitter.flatness) / nearest);
+        emitterCosine = std::min(1.0f, (height + pushReach + light.emitter.flatness) / nearest);
     }
     // The receiver's: the greatest |normal . (corner - point)| over the emitter's corner box and the
-    // box, over the nearest distance (a push moves a point by under kPushReach).
+    // box, over the nearest distance (a push moves a point by under pushReach).
     float receiverCosine = 1;
     if (receiverNormal) {
-        const Vec3 n = *receiverNormal;
-        float emitterLo = 0, emitterHi = 0, boxLo = 0, boxHi = 0;
-        for (int k = 0; k < 3; ++k) {
-            const bool up = n[k] >= 0;
-            emitterLo += n[k] * (up ? light.emitter.box.mins[k] : light.emitter.box.maxs[k]);
-            emitterHi += n[k] * (up ? light.emitter.box.maxs[k] : light.emitter.box.mins[k]);
-            boxLo += n[k] * (up ? box.mins[k] : box.maxs[k]);
-            boxHi += n[k] * (up ? box.maxs[k] : box.mins[k]);
-        }
-        const float reach = std::max(std::fabs(emitterHi - boxLo), std::fabs(emitterLo - boxHi)) + kPushReach;
+        const auto [emitterLo, emitterHi] = rangeAlong(*receiverNormal, light.emitter.box);
+        const auto [boxLo, boxHi] = rangeAlong(*receiverNormal, box);
+        const float reach = std::max(std::fabs(emitterHi - boxLo), std::fabs(emitterLo - boxHi)) + pushReach;
         receiverCosine = std::min(1.0f, reach / nearest);
     }
     const float bound = light.emitter.area * receiverCosine * emitterCosine / (kPi * nearest * nearest) * 1.1f + 1e-5f;

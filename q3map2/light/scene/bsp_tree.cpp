@@ -74,12 +74,11 @@ void BspTree::buildLeafSolids() {
                     const int32_t axis = axialPlaneCode(plane.normal);
                     if ((axis < 6) != axial) continue;
                     solidPlanes_.push_back({{plane.normal[0], plane.normal[1], plane.normal[2]}, plane.dist, axis});
-                    if (axial) solid.box[axis] = std::min(solid.box[axis], double(plane.dist));
+                    if (!axial) continue;
+                    solid.box[axis] = std::min(solid.box[axis], double(plane.dist));
+                    ++solid.numAxial;
                 }
             solid.numPlanes = uint32_t(solidPlanes_.size()) - solid.firstPlane;
-            solid.numAxial = 0;
-            while (solid.numAxial < solid.numPlanes && solidPlanes_[solid.firstPlane + solid.numAxial].axis < 6)
-                ++solid.numAxial;
             leafSolids_.push_back(solid);
         }
     }
