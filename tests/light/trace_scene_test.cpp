@@ -1,6 +1,9 @@
 // The Embree shadow scene: opaque walls, sky masking, alpha shadows and light filters.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <limits>
 #include <span>
 
 #include <algorithm>
@@ -162,6 +165,23 @@ TEST(TraceScene, HitAtExactlyIgnoreNearIsPassed) {
     scene.traceBatch(rays, out);
     EXPECT_EQ(out[0], (Vec3{1, 1, 1}));
     EXPECT_EQ(out[1], (Vec3{0, 0, 0}));
+}
+
+TEST(TraceScene, FirstTestedDepthIsTheNextFloatAboveTheInhibitRadius) {
+    // Its definition: 0 without a radius, else the next float up (std::nextafter towards infinity).
+    const float inf = std::numeric_limits<float>::infinity();
+    const float cases[] = {0.0f, -0.0f, -1.0f, std::numeric_limits<float>::denorm_min(), 1e-30f, 0.5f, 1.0f,
+                           50.0f, 64.0f, 1e30f, std::numeric_limits<float>::max(), inf, -inf,
+                           std::numeric_limits<float>::quiet_NaN()};
+    for (const float radius : cases) {
+        const float expected = radius > 0 ? std::nextafter(radius, inf) : 0.0f;
+        EXPECT_EQ(std::bit_cast<uint32_t>(TraceScene::firstTestedDepth(radius)), std::bit_cast<uint32_t>(expected))
+            << radius;
+    }
+    for (uint32_t bits = 0x3f800000u; bits < 0x3f800000u + 4096u; ++bits) {
+        const float radius = std::bit_cast<float>(bits);
+        EXPECT_EQ(TraceScene::firstTestedDepth(radius), std::nextafter(radius, inf)) << radius;
+    }
 }
 
 TEST(TraceScene, SunRayIntoStructuralSolidIsBlocked) {

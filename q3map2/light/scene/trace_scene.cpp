@@ -242,21 +242,6 @@ uint32_t TraceScene::receiverMask(int receiveShadows) const {
     return groupBit(receiveShadows);
 }
 
-// Embree accepts hits from tnear on, q3map2 only beyond the inhibit radius (see the header).
-float TraceScene::firstTestedDepth(float ignoreNear) {
-    return ignoreNear > 0 ? std::nextafter(ignoreNear, std::numeric_limits<float>::infinity()) : 0.0f;
-}
-
-std::optional<ShadowRay> TraceScene::segmentRay(Vec3 from, Vec3 to, float ignoreNear) {
-    const Vec3 d = to - from;
-    const float dist = length(d);
-    if (dist <= 0) return std::nullopt;
-    // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
-    const float tfar = dist - std::min(0.01f, dist * 0.5f);
-    if (tfar <= ignoreNear) return std::nullopt;
-    return ShadowRay{from, d / dist, firstTestedDepth(ignoreNear), tfar, false, -1, kAllShadowGroups};
-}
-
 ShadowRay TraceScene::skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear) {
     return ShadowRay{from, normalize(direction), firstTestedDepth(ignoreNear), std::numeric_limits<float>::infinity(),
                      true, skyIndex, kAllShadowGroups};

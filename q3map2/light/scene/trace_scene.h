@@ -13,10 +13,13 @@
 // search, so rays stop at the first opaque surface instead of looking for the nearest one.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -119,9 +122,23 @@ public:
     // The depth a ray starts at when occluders up to `ignoreNear` are ignored: q3map2 passes a hit
     // at exactly the inhibit radius (TraceTriangle skips depth <= inhibitRadius), so a grid point
     // half a cell below a sky face does not see that sky and its sun ray runs on into the solid.
-    static float firstTestedDepth(float ignoreNear);
+    // Inline with segmentRay: both are asked once per shadow ray. For a positive finite float the
+    // next one up is the next bit pattern.
+    static float firstTestedDepth(float ignoreNear) {
+        if (!(ignoreNear > 0)) return 0.0f;
+        if (!(ignoreNear < std::numeric_limits<float>::infinity())) return ignoreNear;
+        return std::bit_cast<float>(std::bit_cast<uint32_t>(ignoreNear) + 1u);
+    }
     // The ray transmission() traces from `from` to `to`; nullopt when nothing can block it.
-    static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0);
+    static std::optional<ShadowRay> segmentRay(Vec3 from, Vec3 to, float ignoreNear = 0) {
+        const Vec3 d = to - from;
+        const float dist = length(d);
+        if (dist <= 0) return std::nullopt;
+        // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
+        const float tfar = dist - std::min(0.01f, dist * 0.5f);
+        if (tfar <= ignoreNear) return std::nullopt;
+        return ShadowRay{from, d / dist, firstTestedDepth(ignoreNear), tfar, false, -1, kAllShadowGroups};
+    }
     // The ray skyTransmission() traces.
     static ShadowRay skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0);
     // Transmission of many rays at once (out[i] for rays[i]), traced as Embree ray streams: cheaper
