@@ -97,27 +97,72 @@ int firstClearBit(const std::vector<uint64_t>& bits, int limit) {
     return -1;
 }
 
+// A page row OR-ed with itself shifted down by 0 .. length - 1 bits: bit x is set when any texel
+// x .. x + length - 1 of the row is used.
+void smearRow(const uint64_t* row, int words, int length, uint64_t* out, std::vector<uint64_t>& scratch) {
+    std::copy(row, row + words, out);
+    int covered = 1;  // out holds the OR of the row shifted down by 0 .. covered - 1
+    while (covered < length) {
+        const int step = std::min(covered, length - covered);
+        std::copy(out, out + words, scratch.begin());
+        orShiftedDown(scratch.data(), words, step, out);
+        covered += step;
+    }
+}
+
+// The page rows smeared over each run length of one block (smearRow), made when first asked during
+// the block's scan of one page: a block of h rows tests every page row up to h times, once for
+// each of its own rows, and the smear is the same each time.
+class SmearedRows {
+public:
+    // For a scan of `page` by a block with these runs (the same runs as blockedColumns is given).
+    void begin(const Page& page, std::span<const TexelRun> runs, int pageSize) {
+        page_ = &page;
+        rows_ = pageSize;
+        words_ = page.wordsPerRow;
+        lengths_.clear();
+        runLength_.clear();
+        for (const TexelRun& run : runs) {
+            auto it = std::find(lengths_.begin(), lengths_.end(), run.length);
+            runLength_.push_back(int(it - lengths_.begin()));
+            if (it == lengths_.end()) lengths_.push_back(run.length);
+        }
+        made_.assign(lengths_.size() * size_t(rows_), 0);
+        smeared_.resize(made_.size() * size_t(words_));
+        scratch_.resize(size_t(words_));
+    }
+    // Page row `row` smeared over the length of run `run` (its index in the runs given to begin).
+    const uint64_t* row(size_t run, int row) {
+        const size_t slot = size_t(runLength_[run]) * size_t(rows_) + size_t(row);
+        uint64_t* out = &smeared_[slot * size_t(words_)];
+        if (!made_[slot]) {
+            smearRow(&page_->usedBits[size_t(row) * size_t(words_)], words_, lengths_[size_t(runLength_[run])], out,
+                     scratch_);
+            made_[slot] = 1;
+        }
+        return out;
+    }
+
+private:
+    const Page* page_ = nullptr;
+    int rows_ = 0, words_ = 0;
+    std::vector<int> lengths_;    // distinct run lengths
+    std::vector<int> runLength_;  // per run: index into lengths_
+    std::vector<uint8_t> made_;   // per (length, page row)
+    std::vector<uint64_t> smeared_, scratch_;
+};
+
 // q3map2 TestOutLightmapStamp for every x of one page row at once: bit x of `blocked` is set when
 // the block placed at (x, y) would cover a used texel. A run of `length` columns from `first`
 // collides at x when any page texel x + first .. x + first + length - 1 is used: the page row,
 // smeared down over the run's length, then shifted down by its start. Stops early once every x
 // below `xMax` is blocked.
-void blockedColumns(const Page& page, std::span<const TexelRun> runs, int y, int xMax, std::vector<uint64_t>& blocked,
-                    std::vector<uint64_t>& smear, std::vector<uint64_t>& scratch) {
-    const int words = page.wordsPerRow;
+void blockedColumns(std::span<const TexelRun> runs, int y, int xMax, int words, SmearedRows& smeared,
+                    std::vector<uint64_t>& blocked) {
     std::fill(blocked.begin(), blocked.end(), 0);
-    for (const TexelRun& run : runs) {
+    for (size_t k = 0; k < runs.size(); ++k) {
         if (firstClearBit(blocked, xMax) < 0) return;
-        const uint64_t* row = &page.usedBits[size_t(y + run.row) * size_t(words)];
-        std::copy(row, row + words, smear.begin());
-        int covered = 1;  // smear holds the OR of the row shifted down by 0 .. covered - 1
-        while (covered < run.length) {
-            const int step = std::min(covered, run.length - covered);
-            scratch = smear;
-            orShiftedDown(scratch.data(), words, step, smear.data());
-            covered += step;
-        }
-        orShiftedDown(smear.data(), words, run.first, blocked.data());
+        orShiftedDown(smeared.row(k, y + runs[k].row), words, runs[k].first, blocked.data());
     }
 }
 
@@ -410,7 +455,8 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
 
     std::vector<Page> pages;
     const int pageTexels = pageSize * pageSize;
-    std::vector<uint64_t> blocked(size_t((pageSize + 63) / 64)), smear(blocked.size()), scratch(blocked.size());
+    std::vector<uint64_t> blocked(size_t((pageSize + 63) / 64));
+    SmearedRows smeared;
     for (size_t index : order) {
         const LightmapBlock& b = blocks[index];
         const bool isSolid = solid[index] != 0;
@@ -428,6 +474,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             const int yMax = isSolid ? pageSize : pageSize - b.height + 1;
             const int xStep = options.fastAllocate ? std::max(1, b.width / 15) : 1;
             const int yStep = options.fastAllocate ? std::max(1, b.height / 15) : 1;
+            if (!isSolid) smeared.begin(page, runs, pageSize);
             for (int y = 0; y < yMax && pageIndex < 0; y += yStep) {
                 if (isSolid) {
                     for (int x = 0; x < xMax; x += xStep)
@@ -437,7 +484,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
                         }
                     continue;
                 }
-                blockedColumns(page, runs, y, xMax, blocked, smear, scratch);
+                blockedColumns(runs, y, xMax, page.wordsPerRow, smeared, blocked);
                 if (xStep == 1) {
                     const int x = firstClearBit(blocked, xMax);
                     if (x >= 0) pageIndex = int(p), px = x, py = y;
