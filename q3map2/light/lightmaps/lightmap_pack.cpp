@@ -142,6 +142,7 @@ public:
         }
         return out;
     }
+    int words() const { return words_; }  // per row
 
 private:
     const Page* page_ = nullptr;
@@ -157,12 +158,12 @@ private:
 // collides at x when any page texel x + first .. x + first + length - 1 is used: the page row,
 // smeared down over the run's length, then shifted down by its start. Stops early once every x
 // below `xMax` is blocked.
-void blockedColumns(std::span<const TexelRun> runs, int y, int xMax, int words, SmearedRows& smeared,
+void blockedColumns(std::span<const TexelRun> runs, int y, int xMax, SmearedRows& smeared,
                     std::vector<uint64_t>& blocked) {
     std::fill(blocked.begin(), blocked.end(), 0);
     for (size_t k = 0; k < runs.size(); ++k) {
         if (firstClearBit(blocked, xMax) < 0) return;
-        orShiftedDown(smeared.row(k, y + runs[k].row), words, runs[k].first, blocked.data());
+        orShiftedDown(smeared.row(k, y + runs[k].row), smeared.words(), runs[k].first, blocked.data());
     }
 }
 
@@ -484,7 +485,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
                         }
                     continue;
                 }
-                blockedColumns(runs, y, xMax, page.wordsPerRow, smeared, blocked);
+                blockedColumns(runs, y, xMax, smeared, blocked);
                 if (xStep == 1) {
                     const int x = firstClearBit(blocked, xMax);
                     if (x >= 0) pageIndex = int(p), px = x, py = y;
