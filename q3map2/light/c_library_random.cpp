@@ -55,7 +55,9 @@ Words apply(const Matrix& m, const Words& v) {
 }  // namespace
 
 void CLibraryRandom::discard(uint64_t count) {
-    constexpr uint64_t kStepUpTo = 4 * kWords;  // shorter runs are cheaper stepped
+    // A jump costs a 31 x 31 matrix product per set bit of the count, each as much as stepping
+    // a few hundred values: shorter runs are cheaper stepped.
+    constexpr uint64_t kStepUpTo = 4096;
     if (count <= kStepUpTo || count >> kPowers) {
         for (uint64_t i = 0; i < count; ++i) next();
         return;

@@ -1,6 +1,7 @@
 // q3map2's rand() sequence and the grid-point nudges that draw from it (placeGridPointAsTraceGrid).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 #include "bsp_tree.h"
@@ -78,7 +79,7 @@ TEST(GridNudges, PointsInSolidTakeTheFirstOpenTryDrawingInIndexOrder) {
     const GridLattice grid{{3, 2, 1}, {-70, 0, 0}, {64, 64, 128}};
     const CLibraryRandom start;
     for (int threads : {1, 2}) {
-        const auto placed = placeGridAsTraceGrid(&tree, b, grid, start, threads);
+        const auto placed = placeGridAsTraceGrid(&tree, grid, start, threads);
         ASSERT_EQ(placed.size(), 6u);
         // q3map2's order: every try of a point that stays in solid draws 3 values, and a nudged
         // point draws 3 per try up to its first open one.
@@ -100,6 +101,38 @@ TEST(GridNudges, PointsInSolidTakeTheFirstOpenTryDrawingInIndexOrder) {
             ASSERT_TRUE(open);
             EXPECT_FALSE(open->nudged);
             EXPECT_EQ(open->origin, (Vec3{58, 0, 0} + y));
+        }
+    }
+}
+
+TEST(GridNudges, TriesThatCannotBeFreeAreDrawnButNotTested) {
+    const bsp::Bsp b = halfOpenWorld();
+    const BspTree tree(b);
+    const Vec3 cell{64, 64, 128};
+    for (float x : {-0.5f, -3.0f, -6.0f, -12.0f, -20.0f, -28.0f, -31.0f, -31.9f, -33.0f, -40.0f}) {
+        // Try k reaches at most half of 0.005 (k + 1) cells: no earlier try can reach x > -0.1.
+        const int first = firstGridNudgeThatMayLeaveSolid(tree, {x, 0, 0}, cell);
+        const int bound = int(std::floor((-x - 0.1f) / (0.5f * 0.005f * cell.x))) - 1;
+        EXPECT_GE(first, std::min(std::max(bound, 0), kGridNudgeTries)) << x;
+        EXPECT_LE(first, kGridNudgeTries) << x;
+        if (x < -32.1f) {
+            EXPECT_EQ(first, kGridNudgeTries) << x;
+        }
+        // Whatever try it starts from, the point lands where q3map2's first open try puts it, and
+        // the sequence moves on by exactly the values those tries drew.
+        const CLibraryRandom start(1234);
+        Vec3 expected;
+        const int k = firstOpenTry({x, 0, 0}, cell, start, expected);
+        for (int from : {0, first}) {
+            CLibraryRandom random = start;
+            const auto placed = nudgeGridPointAsTraceGrid(tree, {x, 0, 0}, cell, random, from);
+            CLibraryRandom after = start;
+            after.discard(3 * uint64_t(k >= 0 ? k + 1 : kGridNudgeTries));
+            EXPECT_EQ(random.next(), after.next()) << x << " from " << from;
+            ASSERT_EQ(placed.has_value(), k >= 0) << x << " from " << from;
+            if (placed) {
+                EXPECT_EQ(placed->origin, expected) << x << " from " << from;
+            }
         }
     }
 }

@@ -88,6 +88,46 @@ TEST(BspTree, PointInOpaqueBrush) {
     EXPECT_FALSE(BspTree(b).brushIsOpaque(0));
 }
 
+TEST(BspTree, BoxInSolidOnlyWhenEveryPointIs) {
+    const bsp::Bsp b = twoLeafBsp();
+    const BspTree tree(b);
+    // Wholly inside the brush (x -64..-32, y and z -16..16): solid.
+    EXPECT_TRUE(tree.boxInSolid({-60, -10, -10}, {-36, 10, 10}));
+    // Reaching 0.2 past its top: points there are free, even with epsilon 0.125.
+    EXPECT_FALSE(tree.boxInSolid({-60, -10, -10}, {-36, 10, 16.2f}));
+    EXPECT_FALSE(tree.boxInSolid({-60, -10, -10}, {-36, 10, 16.2f}, 0.125f));
+    // 0.05 past it counts as inside within epsilon 0.125, not within 0.
+    EXPECT_TRUE(tree.boxInSolid({-60, -10, -10}, {-36, 10, 16.05f}, 0.125f));
+    EXPECT_FALSE(tree.boxInSolid({-60, -10, -10}, {-36, 10, 16.05f}));
+    // The open leaf, and boxes that are not boxes.
+    EXPECT_FALSE(tree.boxInSolid({10, 0, 0}, {20, 5, 5}));
+    EXPECT_FALSE(tree.boxInSolid({-36, 0, 0}, {-60, 5, 5}));
+    EXPECT_FALSE(tree.boxInSolid({-60, 0, 0}, {-36, std::numeric_limits<float>::infinity(), 5}));
+
+    // Leaf 0 outside every cluster: solid, but within 0.1 of the node's plane a point may end in
+    // leaf 1 (which has a cluster), so a box reaching that band is not.
+    bsp::Bsp outside = b;
+    outside.leafs[0].cluster = -1;
+    const BspTree outsideTree(outside);
+    EXPECT_TRUE(outsideTree.boxInSolid({5, -100, -100}, {50, 100, 100}));
+    EXPECT_FALSE(outsideTree.boxInSolid({0.05f, -100, -100}, {50, 100, 100}));
+    // Across the plane into leaf 1: its part between the brush and the plane is free.
+    EXPECT_FALSE(outsideTree.boxInSolid({-40, -10, -10}, {50, 10, 10}));
+
+    // Every verdict of solid holds for a lattice of points inside the box.
+    for (const BspTree* t : {&tree, &outsideTree})
+        for (float x0 : {-70.0f, -60.0f, -33.0f, -0.2f, 0.0f, 2.0f})
+            for (float width : {1.0f, 10.0f, 40.0f}) {
+                const Vec3 lo{x0, -12, -17}, hi{x0 + width, 12, 15.9f};
+                if (!t->boxInSolid(lo, hi, -0.125f)) continue;
+                for (int i = 0; i <= 8; ++i)
+                    for (int j = 0; j <= 8; ++j) {
+                        const Vec3 p = lo + (hi - lo) * Vec3{float(i) / 8, float(j) / 8, float((i + j) % 9) / 8};
+                        EXPECT_TRUE(t->pointInSolid(p, -0.125f)) << p.x << " " << p.y << " " << p.z;
+                    }
+            }
+}
+
 TEST(BspTree, NudgeSearchIsNearestFirst) {
     const auto offsets = nudgeOffsets(2.0f, 1.0f);
     ASSERT_FALSE(offsets.empty());

@@ -66,73 +66,77 @@ std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, 
     return PlacedGridPoint{*free, tree->clusterForPoint(*free), true};
 }
 
-bool gridNudgesCannotLeaveSolid(const bsp::Bsp& bsp, Vec3 origin, Vec3 cellSize) {
-    if (bsp.nodes.empty()) return false;
-    const Vec3 half = cellSize * 0.5f;
-    // Points within 0.1 of a plane may end on either side (PointInLeafNum), so a box reaching
-    // that band visits both; the extra 0.01 covers the rounding of the box's distances.
-    constexpr double kBand = 0.1 + 0.01;
-    constexpr int kNodeBudget = 512;
-    // Each visit adds at most one entry: the budget bounds the stack.
-    std::array<int32_t, kNodeBudget + 2> pending;
-    size_t top = 0;
-    pending[top++] = 0;
-    int visited = 0;
-    while (top > 0) {
-        const int32_t node = pending[--top];
-        if (node < 0) {
-            const size_t leaf = size_t(-(node + 1));
-            if (leaf >= bsp.leafs.size() || bsp.leafs[leaf].cluster != -1) return false;
-            continue;
-        }
-        if (++visited > kNodeBudget || size_t(node) >= bsp.nodes.size()) return false;
-        const bsp::Node& n = bsp.nodes[size_t(node)];
-        if (n.planeNum < 0 || size_t(n.planeNum) >= bsp.planes.size()) return false;
-        const bsp::Plane& plane = bsp.planes[size_t(n.planeNum)];
-        double centre = -double(plane.dist), spread = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            centre += double(plane.normal[axis]) * double(origin[axis]);
-            spread += std::fabs(double(plane.normal[axis])) * double(half[axis]);
-        }
-        if (centre - spread <= kBand) pending[top++] = n.children[1];
-        if (centre + spread >= -kBand) pending[top++] = n.children[0];
+namespace {
+
+// q3map2's nudge step of try k: 0.005 added k + 1 times, in double.
+std::array<double, kGridNudgeTries> gridNudgeSteps() {
+    std::array<double, kGridNudgeTries> steps{};
+    double step = 0.0;
+    for (double& s : steps) s = step += 0.005;
+    return steps;
+}
+
+}  // namespace
+
+int firstGridNudgeThatMayLeaveSolid(const BspTree& tree, Vec3 origin, Vec3 cellSize) {
+    static const std::array<double, kGridNudgeTries> steps = gridNudgeSteps();
+    // Try k moves each coordinate by at most half of step k times the cell (then rounds to float,
+    // which the 0.01 covers): its box holds every earlier try too, the steps growing.
+    auto triesUpToStaySolid = [&](int k) {
+        const double reach = 0.5 * steps[size_t(k)];
+        const Vec3 half{float(reach * cellSize.x + 0.01), float(reach * cellSize.y + 0.01),
+                        float(reach * cellSize.z + 0.01)};
+        return tree.boxInSolid(origin - half, origin + half, kNudgedEpsilon);
+    };
+    if (triesUpToStaySolid(kGridNudgeTries - 1)) return kGridNudgeTries;
+    // The first k whose box is not known to stay solid (every try before it fails): lo stays
+    // solid (or is -1), hi does not.
+    int lo = -1, hi = kGridNudgeTries - 1;
+    while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        (triesUpToStaySolid(mid) ? lo : hi) = mid;
     }
-    return true;
+    return hi;
 }
 
 std::optional<PlacedGridPoint> nudgeGridPointAsTraceGrid(const BspTree& tree, Vec3 origin, Vec3 cellSize,
-                                                         CLibraryRandom& random) {
-    // Every try's position as q3map2 computes it (in double, rounded to float); drawn from a copy,
-    // since only the tries up to the first free one consume values.
+                                                         CLibraryRandom& random, int firstTry) {
+    static const std::array<double, kGridNudgeTries> steps = gridNudgeSteps();
+    // The tries from `firstTry` on as q3map2 computes them (in double, rounded to float), a few at
+    // a time: most points get out within a few tries of the first that can, and only the tries up
+    // to the first free one consume values.
+    constexpr int kTriesAtOnce = 16;
     thread_local std::vector<Vec3> tries;
-    tries.clear();
+    firstTry = std::clamp(firstTry, 0, kGridNudgeTries);
     CLibraryRandom drawn = random;
+    drawn.discard(3 * uint64_t(firstTry));
     auto moved = [&](float base, double step, float size) {
         const double unit = double(drawn.unit());
         return float(double(base) + (unit - 0.5) * step * double(size));
     };
-    double step = 0.0;
-    for (int k = 0; k < kGridNudgeTries; ++k) {
-        step += 0.005;
-        const float x = moved(origin.x, step, cellSize.x);
-        const float y = moved(origin.y, step, cellSize.y);
-        const float z = moved(origin.z, step, cellSize.z);
-        tries.push_back(Vec3{x, y, z});
+    for (int k = firstTry; k < kGridNudgeTries; k += kTriesAtOnce) {
+        const CLibraryRandom before = drawn;
+        tries.clear();
+        for (int j = k; j < std::min(k + kTriesAtOnce, kGridNudgeTries); ++j) {
+            const float x = moved(origin.x, steps[size_t(j)], cellSize.x);
+            const float y = moved(origin.y, steps[size_t(j)], cellSize.y);
+            const float z = moved(origin.z, steps[size_t(j)], cellSize.z);
+            tries.push_back(Vec3{x, y, z});
+        }
+        // The tries are whole positions: added to the world's origin, they stay exact.
+        const std::optional<Vec3> free = tree.nudgeOutOfSolid(Vec3{}, tries, kNudgedEpsilon);
+        if (!free) continue;
+        const auto first = std::find(tries.begin(), tries.end(), *free);
+        random = before;
+        random.discard(3 * (uint64_t(first - tries.begin()) + 1));
+        return PlacedGridPoint{*free, tree.clusterForPoint(*free), true};
     }
-    // The tries are whole positions: added to the world's origin, they stay exact.
-    const std::optional<Vec3> free = tree.nudgeOutOfSolid(Vec3{}, tries, kNudgedEpsilon);
-    if (!free) {
-        random = drawn;
-        return std::nullopt;
-    }
-    const auto first = std::find(tries.begin(), tries.end(), *free);
-    random.discard(3 * uint64_t(first - tries.begin() + 1));
-    return PlacedGridPoint{*free, tree.clusterForPoint(*free), true};
+    random = drawn;
+    return std::nullopt;
 }
 
-std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const bsp::Bsp& bsp,
-                                                                 const GridLattice& grid, CLibraryRandom random,
-                                                                 int threads) {
+std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const GridLattice& grid,
+                                                                 CLibraryRandom random, int threads) {
     const size_t bx = size_t(std::max(0, grid.bounds[0])), by = size_t(std::max(0, grid.bounds[1]));
     const size_t count = bx * by * size_t(std::max(0, grid.bounds[2]));
     auto latticePoint = [&](size_t i) {
@@ -141,27 +145,30 @@ std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* 
                     grid.mins.z + float(z) * grid.size.z};
     };
     std::vector<std::optional<PlacedGridPoint>> placements(count);
-    // In parallel, what needs no draw: free lattice points, and points whose every try fails.
-    std::vector<uint8_t> hopeless(count, 0);
+    // In parallel, what needs no draw: free lattice points, and for the others the first try that
+    // may be free (kGridNudgeTries: none).
+    std::vector<uint8_t> firstTry(count, 0);
+    static_assert(kGridNudgeTries <= 255, "firstTry holds a try index or kGridNudgeTries");
     const GridNudges noNudges{std::vector<Vec3>{}};
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i) {
                 placements[i] = placeGridPoint(tree, latticePoint(i), noNudges);
-                hopeless[i] = !placements[i] && gridNudgesCannotLeaveSolid(bsp, latticePoint(i), grid.size);
+                if (!placements[i])
+                    firstTry[i] = uint8_t(firstGridNudgeThatMayLeaveSolid(*tree, latticePoint(i), grid.size));
             }
         });
     });
     uint64_t skipped = 0;  // values drawn by the hopeless points since the last search
     for (size_t i = 0; i < count; ++i) {
         if (placements[i]) continue;
-        if (hopeless[i]) {
+        if (firstTry[i] == kGridNudgeTries) {
             skipped += 3 * kGridNudgeTries;
             continue;
         }
         random.discard(skipped);
         skipped = 0;
-        placements[i] = nudgeGridPointAsTraceGrid(*tree, latticePoint(i), grid.size, random);
+        placements[i] = nudgeGridPointAsTraceGrid(*tree, latticePoint(i), grid.size, random, firstTry[i]);
     }
     return placements;
 }

@@ -82,13 +82,14 @@ std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, 
 // and keeps the first free one. These draw exactly as many values as q3map2 does, so calling them
 // for every point in index order keeps the sequence in step with q3map2's run on one thread.
 constexpr int kGridNudgeTries = 199;  // while the step, summed in double, stays within 1
-// Whether every position the nudges of `origin` can reach (half a cell each way) lies in leafs
-// outside every cluster, so that all of them fail whatever is drawn. False when unsure (a bounded
-// walk of `bsp`'s nodes).
-bool gridNudgesCannotLeaveSolid(const bsp::Bsp& bsp, Vec3 origin, Vec3 cellSize);
-// The first free try for a point in solid, drawing from `random` the values its tries take.
+// The first of the nudge tries of `origin` that may be free: every earlier try, whatever is drawn,
+// lies in solid as the tries are tested (BspTree::boxInSolid decides; unsure counts as may be
+// free). kGridNudgeTries when every try stays in solid.
+int firstGridNudgeThatMayLeaveSolid(const BspTree& tree, Vec3 origin, Vec3 cellSize);
+// The first free try for a point in solid, drawing from `random` the values its tries take. Tries
+// before `firstTry` (firstGridNudgeThatMayLeaveSolid) are drawn but not tested.
 std::optional<PlacedGridPoint> nudgeGridPointAsTraceGrid(const BspTree& tree, Vec3 origin, Vec3 cellSize,
-                                                         CLibraryRandom& random);
+                                                         CLibraryRandom& random, int firstTry = 0);
 
 // A grid to light: `bounds` points per axis at `mins` + index * `size`.
 struct GridLattice {
@@ -101,9 +102,8 @@ struct GridLattice {
 // thread, in index order, drawing from `random` (placeGridPoint, then nudgeGridPointAsTraceGrid);
 // the tests that draw nothing run on `threads` threads. nullopt: left in solid. `tree` null or
 // without nodes: every point stays on the lattice.
-std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const bsp::Bsp& bsp,
-                                                                 const GridLattice& grid, CLibraryRandom random,
-                                                                 int threads);
+std::vector<std::optional<PlacedGridPoint>> placeGridAsTraceGrid(const BspTree* tree, const GridLattice& grid,
+                                                                 CLibraryRandom random, int threads);
 
 // The lights that may reach a block's points (indices in light order), and with a tree, for each
 // of them whether no segment from anywhere in the block (nudges included) to the light's origin

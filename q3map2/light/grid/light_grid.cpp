@@ -37,7 +37,7 @@ GridPlacement placeLightGrid(const LightContext& ctx) {
     // thread: a point in solid takes the first free one of its random nudges, whose values
     // continue the sequence light creation drew from (placeGridAsTraceGrid).
     const GridLayout& layout = out.layout;
-    out.points = placeGridAsTraceGrid(ctx.tree.get(), ctx.bsp, GridLattice{layout.bounds, layout.mins, layout.size},
+    out.points = placeGridAsTraceGrid(ctx.tree.get(), GridLattice{layout.bounds, layout.mins, layout.size},
                                       ctx.random, ctx.threads);
     return out;
 }

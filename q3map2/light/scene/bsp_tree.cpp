@@ -376,6 +376,65 @@ int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {
     return cluster;
 }
 
+bool BspTree::leafBrushHoldsBox(int leafNum, const double lo[3], const double hi[3], float epsilon) const {
+    // The box's farthest corner from each side must lie within epsilon, less a margin for the
+    // rounding that separates corner distances from the distances of points inside.
+    constexpr double kMargin = 0.01;
+    const double limit = double(epsilon) - kMargin;
+    for (uint32_t i = leafSolidStart_[size_t(leafNum)]; i < leafSolidStart_[size_t(leafNum) + 1]; ++i) {
+        const LeafSolid& solid = leafSolids_[i];
+        bool holds = hi[0] - solid.box[0] <= limit && hi[1] - solid.box[1] <= limit &&
+                     hi[2] - solid.box[2] <= limit && -lo[0] - solid.box[3] <= limit &&
+                     -lo[1] - solid.box[4] <= limit && -lo[2] - solid.box[5] <= limit;
+        for (uint32_t k = solid.firstPlane + solid.numAxial; k < solid.firstPlane + solid.numPlanes && holds; ++k) {
+            const SidePlane& side = solidPlanes_[k];
+            double farthest = -double(side.dist);
+            for (int axis = 0; axis < 3; ++axis) {
+                const double w = side.normal[axis];
+                farthest += w * (w >= 0 ? hi[axis] : lo[axis]);
+            }
+            holds = farthest <= limit;
+        }
+        if (holds) return true;
+    }
+    return false;
+}
+
+bool BspTree::boxInSolid(Vec3 lo, Vec3 hi, float epsilon) const {
+    if (compact_.empty()) return false;
+    const double boxLo[3] = {lo.x, lo.y, lo.z}, boxHi[3] = {hi.x, hi.y, hi.z};
+    for (int axis = 0; axis < 3; ++axis)
+        if (!std::isfinite(boxLo[axis]) || !std::isfinite(boxHi[axis]) || boxLo[axis] > boxHi[axis]) return false;
+    // The 0.01 beyond the on-plane band covers the rounding of the box's distances.
+    constexpr double kBand = 0.1 + 0.01;
+    constexpr int kNodeBudget = 512;
+    // A back child waits for each node of the path that sends the box both ways: the validated
+    // depth bounds the stack.
+    int32_t pending[kMaxCompactDepth];
+    int top = 0, visited = 0;
+    int32_t node = 0;
+    while (true) {
+        if (node < 0) {
+            const int leaf = -(node + 1);
+            if (leafCluster_[size_t(leaf)] != -1 && !leafBrushHoldsBox(leaf, boxLo, boxHi, epsilon)) return false;
+            if (top == 0) return true;
+            node = pending[--top];
+            continue;
+        }
+        if (++visited > kNodeBudget) return false;
+        const CompactNode& n = compact_[size_t(node)];
+        double nearest = -n.dist, farthest = -n.dist;
+        for (int axis = 0; axis < 3; ++axis) {
+            const double w = n.normal[axis];
+            nearest += w * (w >= 0 ? boxLo[axis] : boxHi[axis]);
+            farthest += w * (w >= 0 ? boxHi[axis] : boxLo[axis]);
+        }
+        const bool back = nearest <= kBand, front = farthest >= -kBand;
+        if (front && back) pending[top++] = n.children[1];
+        node = n.children[front ? 0 : 1];
+    }
+}
+
 std::vector<Vec3> nudgeOffsets(float radius, float step) {
     std::vector<Vec3> offsets;
     if (!(step > 0.0f) || !(radius >= 0.0f)) return {Vec3{}};

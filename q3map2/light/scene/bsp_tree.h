@@ -125,6 +125,12 @@ public:
     std::optional<Vec3> nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, const OffsetBox& box,
                                         float epsilon = 0.0f) const;
 
+    // Whether every point of the box `lo`..`hi` is in solid for clusterForPointExt(point, epsilon):
+    // each leaf the box may reach (a point within 0.1 of a node's plane may end on either side)
+    // lies outside every cluster or has an opaque brush holding the whole box. False when unsure
+    // (a bounded walk; without the compact walks; a box not finite).
+    bool boxInSolid(Vec3 lo, Vec3 hi, float epsilon = 0.0f) const;
+
     // Whether the compact walks are in use (the node tree is a proper tree of bounded depth).
     bool usesCompactTree() const { return !compact_.empty(); }
 
@@ -138,6 +144,7 @@ private:
     void buildLeafSolids();
     int compactLeafFrom(int node, Vec3 point) const;
     int clusterInLeaf(int leafNum, Vec3 point, float epsilon) const;
+    bool leafBrushHoldsBox(int leafNum, const double lo[3], const double hi[3], float epsilon) const;
 
     const bsp::Bsp& bsp_;
     std::vector<uint8_t> opaque_;  // per brush
