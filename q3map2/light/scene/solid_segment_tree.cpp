@@ -134,16 +134,18 @@ std::optional<Vec3> SolidSegmentTree::entryFrom(int32_t root, Vec3 from, Vec3 to
             continue;
         }
         const CompactNode& n = nodes_[size_t(node)];
-        const SegmentStep step = segmentStep(nodeDistance(n, s), nodeDistance(n, e));
-        if (!step.split) {
-            node = n.children[step.side];
-        } else {
-            const Vec3 mid = start + (end - start) * step.frac;
-            stack[top++] = Pending{n.children[1 - step.side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
-            node = n.children[step.side];
-            end = mid;
-            e = WalkPoint(mid);
+        // segmentStep, with the unsplit sides decided before the split is made (most nodes).
+        const double front = nodeDistance(n, s), back = nodeDistance(n, e);
+        if (const int side = unsplitSide(front, back); side >= 0) {
+            node = n.children[side];
+            continue;
         }
+        const SegmentStep step = segmentStep(front, back);
+        const Vec3 mid = start + (end - start) * step.frac;
+        stack[top++] = Pending{n.children[1 - step.side], {mid.x, mid.y, mid.z}, {end.x, end.y, end.z}};
+        node = n.children[step.side];
+        end = mid;
+        e = WalkPoint(mid);
     }
 }
 

@@ -61,10 +61,15 @@ struct SegmentStep {
     int side = 0;
     float frac = 0;
 };
-inline SegmentStep segmentStep(double front, double back) {
+// The side a segment stays on without a split (0 front, 1 back), -1 when it is split.
+inline int unsplitSide(double front, double back) {
     constexpr double kOnEpsilon = 0.1;  // TRACE_ON_EPSILON
-    if (front >= -kOnEpsilon && back >= -kOnEpsilon) return {false, 0, 0};
-    if (front < kOnEpsilon && back < kOnEpsilon) return {false, 1, 0};
+    if (front >= -kOnEpsilon && back >= -kOnEpsilon) return 0;
+    if (front < kOnEpsilon && back < kOnEpsilon) return 1;
+    return -1;
+}
+inline SegmentStep segmentStep(double front, double back) {
+    if (const int side = unsplitSide(front, back); side >= 0) return {false, side, 0};
     return {true, front < 0 ? 1 : 0, float(front / (front - back))};
 }
 
