@@ -403,15 +403,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
                       r.mask);
         }
     }
-    if (!skyRecords_.empty() && numOcclusion > 0) {
-        // Segments first meet the sky scene (few triangles); survivors are compacted in place.
-        std::copy(occlusionBuffer, occlusionBuffer + numOcclusion, probe);
-        rtcOccluded1M(embree_->skyScene, &plain, probe, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
-        size_t kept = 0;
-        for (size_t k = 0; k < numOcclusion; ++k)
-            if (probe[k].tfar >= 0) occlusionBuffer[kept++] = occlusionBuffer[k];
-        numOcclusion = kept;
-    }
+    const size_t numSegments = numOcclusion;  // point-light segments lead the buffer
     if (numToSky > 0) {
         rtcIntersect1M(embree_->skyScene, &plain, toSkyBuffer, static_cast<unsigned>(numToSky), sizeof(RTCRayHit));
         for (size_t k = 0; k < numToSky; ++k) {
@@ -432,6 +424,21 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
+    if (!skyRecords_.empty() && numSegments > 0) {
+        // Sky surfaces block point-light segments like walls: asked only of the segments the casters
+        // leave open (a blocked ray's translucent crossings no longer matter).
+        uint8_t probed[kBatchChunk];
+        size_t numProbes = 0;
+        for (size_t k = 0; k < numSegments; ++k)
+            if (occlusionBuffer[k].tfar >= 0) {
+                probed[numProbes] = uint8_t(k);
+                probe[numProbes++] = occlusionBuffer[k];
+            }
+        if (numProbes > 0)
+            rtcOccluded1M(embree_->skyScene, &plain, probe, static_cast<unsigned>(numProbes), sizeof(RTCRay));
+        for (size_t j = 0; j < numProbes; ++j)
+            if (probe[j].tfar < 0) occlusionBuffer[probed[j]].tfar = probe[j].tfar;
+    }
     // Segments that Embree leaves open still stop at structural solid (sun rays up to their sky,
     // whose distance their tfar now holds): the tree walk only for the rays that need it, and none
     // when the hull of their ends is clear (sun and point-light segments apart: one long sun prism
