@@ -69,17 +69,20 @@ std::optional<PlacedGridPoint> placeGridPoint(const BspTree* tree, Vec3 origin, 
 namespace {
 
 // q3map2's nudge step of try k: 0.005 added k + 1 times, in double.
-std::array<double, kGridNudgeTries> gridNudgeSteps() {
-    std::array<double, kGridNudgeTries> steps{};
-    double step = 0.0;
-    for (double& s : steps) s = step += 0.005;
+const std::array<double, kGridNudgeTries>& gridNudgeSteps() {
+    static const std::array<double, kGridNudgeTries> steps = [] {
+        std::array<double, kGridNudgeTries> out{};
+        double step = 0.0;
+        for (double& s : out) s = step += 0.005;
+        return out;
+    }();
     return steps;
 }
 
 }  // namespace
 
 int firstGridNudgeThatMayLeaveSolid(const BspTree& tree, Vec3 origin, Vec3 cellSize) {
-    static const std::array<double, kGridNudgeTries> steps = gridNudgeSteps();
+    const std::array<double, kGridNudgeTries>& steps = gridNudgeSteps();
     // Try k moves each coordinate by at most half of step k times the cell (then rounds to float,
     // which the 0.01 covers): its box holds every earlier try too, the steps growing.
     auto triesUpToStaySolid = [&](int k) {
@@ -101,7 +104,7 @@ int firstGridNudgeThatMayLeaveSolid(const BspTree& tree, Vec3 origin, Vec3 cellS
 
 std::optional<PlacedGridPoint> nudgeGridPointAsTraceGrid(const BspTree& tree, Vec3 origin, Vec3 cellSize,
                                                          CLibraryRandom& random, int firstTry) {
-    static const std::array<double, kGridNudgeTries> steps = gridNudgeSteps();
+    const std::array<double, kGridNudgeTries>& steps = gridNudgeSteps();
     // The tries from `firstTry` on as q3map2 computes them (in double, rounded to float), a few at
     // a time: most points get out within a few tries of the first that can, and only the tries up
     // to the first free one consume values.

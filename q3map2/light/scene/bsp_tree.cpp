@@ -400,39 +400,34 @@ bool BspTree::leafBrushHoldsBox(int leafNum, const double lo[3], const double hi
     return false;
 }
 
-bool BspTree::boxInSolid(Vec3 lo, Vec3 hi, float epsilon) const {
-    if (compact_.empty()) return false;
-    const double boxLo[3] = {lo.x, lo.y, lo.z}, boxHi[3] = {hi.x, hi.y, hi.z};
-    for (int axis = 0; axis < 3; ++axis)
-        if (!std::isfinite(boxLo[axis]) || !std::isfinite(boxHi[axis]) || boxLo[axis] > boxHi[axis]) return false;
-    // The 0.01 beyond the on-plane band covers the rounding of the box's distances.
-    constexpr double kBand = 0.1 + 0.01;
+bool BspTree::boxInSolidFrom(int32_t node, const double lo[3], const double hi[3], float epsilon) const {
     constexpr int kNodeBudget = 512;
     // A back child waits for each node of the path that sends the box both ways: the validated
     // depth bounds the stack.
     int32_t pending[kMaxCompactDepth];
     int top = 0, visited = 0;
-    int32_t node = 0;
     while (true) {
         if (node < 0) {
             const int leaf = -(node + 1);
-            if (leafCluster_[size_t(leaf)] != -1 && !leafBrushHoldsBox(leaf, boxLo, boxHi, epsilon)) return false;
+            if (leafCluster_[size_t(leaf)] != -1 && !leafBrushHoldsBox(leaf, lo, hi, epsilon)) return false;
             if (top == 0) return true;
             node = pending[--top];
             continue;
         }
         if (++visited > kNodeBudget) return false;
         const CompactNode& n = compact_[size_t(node)];
-        double nearest = -n.dist, farthest = -n.dist;
-        for (int axis = 0; axis < 3; ++axis) {
-            const double w = n.normal[axis];
-            nearest += w * (w >= 0 ? boxLo[axis] : boxHi[axis]);
-            farthest += w * (w >= 0 ? boxHi[axis] : boxLo[axis]);
-        }
-        const bool back = nearest <= kBand, front = farthest >= -kBand;
-        if (front && back) pending[top++] = n.children[1];
-        node = n.children[front ? 0 : 1];
+        const int side = boxSide(n, lo, hi);
+        if (side == 2) pending[top++] = n.children[1];
+        node = n.children[side == 2 ? 0 : side];
     }
+}
+
+bool BspTree::boxInSolid(Vec3 lo, Vec3 hi, float epsilon) const {
+    if (compact_.empty()) return false;
+    const double boxLo[3] = {lo.x, lo.y, lo.z}, boxHi[3] = {hi.x, hi.y, hi.z};
+    for (int axis = 0; axis < 3; ++axis)
+        if (!std::isfinite(boxLo[axis]) || !std::isfinite(boxHi[axis]) || boxLo[axis] > boxHi[axis]) return false;
+    return boxInSolidFrom(0, boxLo, boxHi, epsilon);
 }
 
 std::vector<Vec3> nudgeOffsets(float radius, float step) {
@@ -496,57 +491,24 @@ std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> o
 std::optional<Vec3> BspTree::nudgeOutOfSolid(Vec3 point, std::span<const Vec3> offsets, const OffsetBox& box,
                                              float epsilon) const {
     // The candidates' box: while it lies wholly beyond 0.1 of a node plane on one side, every
-    // candidate's walk takes that side, so all walks can start below. The margin covers the
-    // rounding of box-corner distances against per-point ones many times over.
+    // candidate's walk takes that side, so all walks can start below.
     int32_t start = 0;
     const Vec3 boxLo = point + box.lo, boxHi = point + box.hi;
     bool boxed = !compact_.empty() && offsets.size() > 1 && box.finite;
-    float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (int k = 0; k < 3 && boxed; ++k) {
         if (!std::isfinite(boxLo[k]) || !std::isfinite(boxHi[k])) boxed = false;
         lo[k] = boxLo[k];
         hi[k] = boxHi[k];
     }
-    // Which children every candidate's walk can take at a node: 0 front, 1 back, 2 either.
-    auto boxSide = [&](const CompactNode& n) {
-        double dLo = -n.dist, dHi = -n.dist, scale = std::fabs(n.dist);
-        for (int k = 0; k < 3; ++k) {
-            const double w = n.normal[k];
-            dLo += w * (w >= 0 ? lo[k] : hi[k]);
-            dHi += w * (w >= 0 ? hi[k] : lo[k]);
-            scale += std::fabs(w) * std::max(std::fabs(lo[k]), std::fabs(hi[k]));
-        }
-        const double margin = 0.01 + 1e-9 * scale;
-        return dLo > 0.1 + margin ? 0 : dHi < -0.1 - margin ? 1 : 2;
-    };
     while (boxed && start >= 0) {
-        const int side = boxSide(compact_[size_t(start)]);
+        const int side = boxSide(compact_[size_t(start)], lo, hi);
         if (side == 2) break;
         start = compact_[size_t(start)].children[side];
     }
-    // Deep in solid, every leaf the box reaches lies outside every cluster: no candidate can be
-    // free, which a bounded walk of the box tells at once.
-    if (boxed && start >= 0) {
-        constexpr int kNodeBudget = 256;
-        int32_t pending[kMaxCompactDepth];
-        int top = 0, visited = 0;
-        int32_t node = start;
-        bool allSolid = true;
-        while (allSolid) {
-            if (node < 0) {
-                if (leafCluster_[size_t(-(node + 1))] != -1) allSolid = false;
-                else if (top == 0) break;
-                else node = pending[--top];
-                continue;
-            }
-            if (++visited > kNodeBudget) allSolid = false;
-            const CompactNode& n = compact_[size_t(node)];
-            const int side = boxSide(n);
-            if (side == 2) pending[top++] = n.children[1];
-            node = n.children[side == 2 ? 0 : side];
-        }
-        if (allSolid) return std::nullopt;
-    }
+    // Deep in solid, the box is (boxInSolid): no candidate can be free, which a bounded walk of the
+    // box tells at once.
+    if (boxed && start >= 0 && boxInSolidFrom(start, lo, hi, epsilon)) return std::nullopt;
     if (boxed && start < 0) {
         // Every candidate lies in this one leaf; only its brushes remain to test.
         const int leaf = -(start + 1);

@@ -3,6 +3,8 @@
 // ClusterForPointExt), with a deterministic search for a nearby free point.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -145,6 +147,23 @@ private:
     int compactLeafFrom(int node, Vec3 point) const;
     int clusterInLeaf(int leafNum, Vec3 point, float epsilon) const;
     bool leafBrushHoldsBox(int leafNum, const double lo[3], const double hi[3], float epsilon) const;
+    // Which children a point of the box lo..hi may walk to at `n` (compactLeafFrom): 0 front,
+    // 1 back, 2 either (within 0.1 of its plane, or across it).
+    // Inline: asked at every node of every box walk.
+    static int boxSide(const CompactNode& n, const double lo[3], const double hi[3]) {
+        double nearest = -n.dist, farthest = -n.dist, scale = std::fabs(n.dist);
+        for (int axis = 0; axis < 3; ++axis) {
+            const double w = n.normal[axis];
+            nearest += w * (w >= 0 ? lo[axis] : hi[axis]);
+            farthest += w * (w >= 0 ? hi[axis] : lo[axis]);
+            scale += std::fabs(w) * std::max(std::fabs(lo[axis]), std::fabs(hi[axis]));
+        }
+        // The margin covers the rounding of corner distances against per-point ones many times over.
+        const double margin = 0.01 + 1e-9 * scale;
+        return nearest > 0.1 + margin ? 0 : farthest < -0.1 - margin ? 1 : 2;
+    }
+    // boxInSolid from `node` (the root, or a node above which every point of the box walks alike).
+    bool boxInSolidFrom(int32_t node, const double lo[3], const double hi[3], float epsilon) const;
 
     const bsp::Bsp& bsp_;
     std::vector<uint8_t> opaque_;  // per brush
