@@ -251,6 +251,11 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         const Light& light = lights[candidates[k]];
         if (!includes(light)) continue;
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
+        if (pointLightBatchableOnGrid(light, lightEnv)) {
+            pointLightToGridPoints(light, lightEnv, envelopes[candidates[k]], origins, clusters,
+                                   std::span(s.pending).subspan(k * np, np), std::span(s.rayOf).subspan(k * np, np));
+            continue;
+        }
         const bool area = light.type == LightType::Area;
         for (size_t p = 0; p < np; ++p) {
             if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {

@@ -153,6 +153,7 @@ struct LuxelSampler {
         std::vector<ShadowRay> rays;
         std::vector<size_t> rayLuxel;  // luxel of each ray
         std::vector<Vec3> transmission;
+        std::vector<uint32_t> luxels;  // the luxels a batched light is asked about
     };
 
     // lightAt for the sample points of the tiles `active` (`skip[i]` = leave dark), written to
@@ -168,20 +169,30 @@ struct LuxelSampler {
         rayLuxel.clear();
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
-        tiles.forEachLuxel(active, [&](uint32_t i) {
-            out[i] = Vec3{};
-            if (!points[i] || skip[i]) return;
-            const size_t before = rays.size();
-            std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);
-            const bool traced = rays.size() > before;
-            if (!c) {
-                rays.resize(before);
-                return;
-            }
-            out[i] = c->color;
-            if (dirs) (*dirs)[i] = c->direction;
-            if (traced) rayLuxel.push_back(i);
-        });
+        if (pointLightBatchable(light, deferred)) {
+            std::vector<uint32_t>& lit = scratch.luxels;
+            lit.clear();
+            tiles.forEachLuxel(active, [&](uint32_t i) {
+                out[i] = Vec3{};
+                if (points[i] && !skip[i]) lit.push_back(i);
+            });
+            pointLightToSamples(light, deferred, envelope, points, lit, out, dirs ? dirs->data() : nullptr, rayLuxel);
+        } else {
+            tiles.forEachLuxel(active, [&](uint32_t i) {
+                out[i] = Vec3{};
+                if (!points[i] || skip[i]) return;
+                const size_t before = rays.size();
+                std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);
+                const bool traced = rays.size() > before;
+                if (!c) {
+                    rays.resize(before);
+                    return;
+                }
+                out[i] = c->color;
+                if (dirs) (*dirs)[i] = c->direction;
+                if (traced) rayLuxel.push_back(i);
+            });
+        }
         if (rays.empty()) return;
         scratch.transmission.resize(rays.size());
         env.scene->traceBatch(rays, scratch.transmission);

@@ -143,6 +143,43 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
            formFactorUpperBound(light.emitter, pushed, normal) * light.add <= light.falloffTolerance;
 }
 
+// q3map2's point or spot light at a luxel or vertex before occlusion: the light's amount (0 when
+// it sends none: beyond the envelope, outside the cone, or under the -fast tolerance), with the
+// distance to the light and the direction towards it (the normal when the point is the light's).
+[[gnu::always_inline]] inline float pointLightAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided, float envelope,
+                                                  const ContributionSettings& settings, float& dist, Vec3& dir) {
+    const Vec3 toLight = light.origin - p;
+    dist = length(toLight);
+    if (dist >= envelope) return 0;
+    dir = dist > 0 ? toLight / dist : n;
+    const float clamped = clampedDistance(dist, light.extraDist);
+    float angle = light.angleAttenuation ? angleTerm(dot(n, dir), twoSided, settings.lightAngleHL) : 1;
+    if (light.angleScale != 0) angle = std::min(angle / light.angleScale, 1.0f);
+    float add = light.linear ? std::max(0.f, angle * light.photons * kLinearScale - clamped * light.fade)
+                             : std::max(0.f, light.photons / (clamped * clamped) * angle);
+    if (light.type == LightType::Spot) {
+        std::optional<float> cone = spotFactor(light, p);
+        if (!cone) return 0;
+        add *= *cone;
+    }
+    if (add <= 0 || ((light.fast || settings.forceFast) && add <= light.falloffTolerance)) return 0;
+    return add;
+}
+
+// q3map2's point or spot light at a grid point `dist` from it (the unclamped distance), before
+// the -fast tolerance and occlusion.
+[[gnu::always_inline]] inline float pointLightAtGridPoint(const Light& light, Vec3 origin, float dist) {
+    dist = clampedDistance(dist, light.extraDist);
+    float add = light.linear ? std::max(0.f, light.photons * kLinearScale - dist * light.fade)
+                             : light.photons / (dist * dist);
+    if (light.type == LightType::Spot) {
+        std::optional<float> cone = spotFactor(light, origin);
+        if (!cone) return 0;
+        add *= *cone;
+    }
+    return add;
+}
+
 }  // namespace
 
 bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
@@ -235,21 +272,10 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
         }
         case LightType::Point:
         case LightType::Spot: {
-            const Vec3 toLight = light.origin - p;
-            float dist = length(toLight);
-            if (dist >= envelope) return std::nullopt;
-            const Vec3 dir = dist > 0 ? toLight / dist : n;
-            dist = clampedDistance(dist, light.extraDist);
-            float angle = light.angleAttenuation ? angleTerm(dot(n, dir), sample.twoSided, env.settings.lightAngleHL) : 1;
-            if (light.angleScale != 0) angle = std::min(angle / light.angleScale, 1.0f);
-            float add = light.linear ? std::max(0.f, angle * light.photons * kLinearScale - dist * light.fade)
-                                     : std::max(0.f, light.photons / (dist * dist) * angle);
-            if (light.type == LightType::Spot) {
-                std::optional<float> cone = spotFactor(light, p);
-                if (!cone) return std::nullopt;
-                add *= *cone;
-            }
-            if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
+            Vec3 dir;
+            float dist;
+            const float add = pointLightAdd(light, p, n, sample.twoSided, envelope, env.settings, dist, dir);
+            if (add <= 0) return std::nullopt;
             return finish(light, light.color * add, dir, occlusion(env, p, light.origin));
         }
         case LightType::Area: {
@@ -338,17 +364,92 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
             add = factor * light.add;
         }
     } else {
-        dist = clampedDistance(dist, light.extraDist);
-        add = light.linear ? std::max(0.f, light.photons * kLinearScale - dist * light.fade)
-                           : light.photons / (dist * dist);
-        if (light.type == LightType::Spot) {
-            std::optional<float> cone = spotFactor(light, origin);
-            if (!cone) return std::nullopt;
-            add *= *cone;
-        }
+        add = pointLightAtGridPoint(light, origin, dist);
     }
     if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
     return finish(light, light.color * add, dir, occlusion(env, origin, light.origin));
+}
+
+bool pointLightBatchable(const Light& light, const LightingEnv& env) {
+    return (light.type == LightType::Point || light.type == LightType::Spot) && !light.controlled &&
+           light.affectsSurfaces && !env.settings.sunOnly && env.scene && env.deferredRays;
+}
+
+void pointLightToSamples(const Light& light, const LightingEnv& env, float envelope,
+                         std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
+                         std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced) {
+    std::vector<ShadowRay>& rays = *env.deferredRays;
+    const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
+    // The PVS verdict of the last cluster asked: runs of samples share one.
+    int lastCluster = -2;
+    bool lastCulled = false;
+    for (const uint32_t i : which) {
+        const SamplePoint& sample = *points[i];
+        const Vec3 p = sample.origin, n = sample.normal;
+        if (!sample.twoSided && dot(light.origin, n) - dot(p, n) < 0) continue;  // behind the surface
+        if (sample.cluster != lastCluster) {
+            lastCluster = sample.cluster;
+            lastCulled = pvsCulledInline(light, sample.cluster, env);
+        }
+        if (lastCulled) continue;
+        Vec3 dir;
+        float dist;
+        const float add = pointLightAdd(light, p, n, sample.twoSided, envelope, env.settings, dist, dir);
+        if (add <= 0) continue;
+        const Vec3 color = light.color * add;
+        if (color == Vec3{}) continue;
+        // occlusion()'s deferred ray from p to the light (segmentRay: the same vector, length and
+        // direction as above), or at once the structural solid test of a segment too short for one.
+        const float tfar = dist - std::min(0.01f, dist * 0.5f);
+        if (dist <= 0 || tfar <= env.settings.ignoreNear) {
+            if (!env.clearOfSolid && env.scene->crossesSolid(p, light.origin)) continue;
+        } else {
+            rays.push_back(ShadowRay{p, dir, firstDepth, tfar, false, -1, env.rayMask, env.clearOfSolid});
+            traced.push_back(i);
+        }
+        out[i] = color;
+        if (dirs) dirs[i] = dir;
+    }
+}
+
+bool pointLightBatchableOnGrid(const Light& light, const LightingEnv& env) {
+    return (light.type == LightType::Point || light.type == LightType::Spot) && !light.controlled &&
+           light.affectsGrid && !env.settings.sunOnly && env.scene && env.deferredRays;
+}
+
+void pointLightToGridPoints(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
+                            std::span<const int> clusters, std::span<std::optional<LightContribution>> out,
+                            std::span<int32_t> rayOf) {
+    std::vector<ShadowRay>& rays = *env.deferredRays;
+    const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
+    const bool fast = light.fast || env.settings.forceFast;
+    int lastCluster = -2;
+    bool lastCulled = false;
+    for (size_t p = 0; p < origins.size(); ++p) {
+        if (clusters[p] != lastCluster) {
+            lastCluster = clusters[p];
+            lastCulled = pvsCulledInline(light, clusters[p], env);
+        }
+        if (lastCulled) continue;
+        const Vec3 origin = origins[p];
+        const Vec3 toLight = light.origin - origin;
+        const float dist = length(toLight);
+        if (dist > envelope) continue;
+        const float add = pointLightAtGridPoint(light, origin, dist);
+        if (add <= 0 || (fast && add <= light.falloffTolerance)) continue;
+        const Vec3 color = light.color * add;
+        if (color == Vec3{}) continue;
+        // A light on the point has no direction (see lightToGridPoint); the ray is occlusion()'s.
+        const Vec3 dir = dist > 0 ? toLight / dist : Vec3{};
+        const float tfar = dist - std::min(0.01f, dist * 0.5f);
+        if (dist <= 0 || tfar <= env.settings.ignoreNear) {
+            if (!env.clearOfSolid && env.scene->crossesSolid(origin, light.origin)) continue;
+        } else {
+            rayOf[p] = int32_t(rays.size());
+            rays.push_back(ShadowRay{origin, dir, firstDepth, tfar, false, -1, env.rayMask, env.clearOfSolid});
+        }
+        out[p] = LightContribution{color, dir, light.style};
+    }
 }
 
 void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,

@@ -1,0 +1,231 @@
+// The batched point and spot light paths (pointLightToSamples, pointLightToGridPoints) against the
+// one-sample functions they stand in for: the same contributions, rays and ray order, bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "bsp_tree.h"
+#include "light_contribution.h"
+#include "light_test_util.h"
+#include "trace_scene.h"
+
+namespace q3::light {
+namespace {
+
+bool sameBits(Vec3 a, Vec3 b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool sameRay(const ShadowRay& a, const ShadowRay& b) {
+    return sameBits(a.from, b.from) && sameBits(a.direction, b.direction) &&
+           std::memcmp(&a.tnear, &b.tnear, sizeof a.tnear) == 0 && std::memcmp(&a.tfar, &b.tfar, sizeof a.tfar) == 0 &&
+           a.toSky == b.toSky && a.skyIndex == b.skyIndex && a.mask == b.mask && a.clearOfSolid == b.clearOfSolid;
+}
+
+// Two clusters that do not see each other (z below 40 and above 60), a structural slab between
+// them (a leaf outside every cluster) and a caster quad: every early exit of the one-sample path
+// has samples that take it.
+struct World {
+    bsp::Bsp bsp;
+    std::unique_ptr<BspTree> tree;
+    std::unique_ptr<TraceScene> scene;
+    World() {
+        bsp.planes = {{{0, 0, 1}, 40}, {{0, 0, 1}, 60}};
+        bsp.nodes = {{0, {1, -1}, {-1000, -1000, -1000}, {1000, 1000, 1000}},
+                     {1, {-3, -2}, {-1000, -1000, 40}, {1000, 1000, 1000}}};
+        bsp.leafs = {{0, 0, {-1000, -1000, -1000}, {1000, 1000, 40}, 0, 0, 0, 0},
+                     {-1, 0, {-1000, -1000, 40}, {1000, 1000, 60}, 0, 0, 0, 0},
+                     {1, 0, {-1000, -1000, 60}, {1000, 1000, 1000}, 0, 0, 0, 0}};
+        bsp.visibility = {2, 0, 0, 0, 1, 0, 0, 0, 0x1, 0x2};
+        tree = std::make_unique<BspTree>(bsp);
+        std::vector<SceneSurface> casters{test::quad({-30, -30, 20}, {40, 0, 0}, {0, 40, 0})};
+        TraceSceneOptions options;
+        const BspTree* t = tree.get();
+        options.solidBetween = [t](Vec3 from, Vec3 to) { return t->segmentCrossesSolid(from, to); };
+        scene = std::make_unique<TraceScene>(casters, options);
+    }
+};
+
+std::vector<Light> someLights(std::mt19937& rng) {
+    std::uniform_real_distribution<float> coord(-120, 120), z(-100, 30), unit(0, 1);
+    std::vector<Light> lights;
+    for (int k = 0; k < 24; ++k) {
+        Light l;
+        l.type = k % 4 == 3 ? LightType::Spot : LightType::Point;
+        l.origin = {coord(rng), coord(rng), k % 5 == 4 ? 100.0f : z(rng)};
+        l.photons = 300 * 7500.0f * (0.2f + unit(rng));
+        l.color = {1, unit(rng), k % 7 == 0 ? 0.0f : 0.5f};
+        l.normal = normalize(Vec3{unit(rng) - 0.5f, unit(rng) - 0.5f, -1});
+        l.radiusByDist = 0.3f + unit(rng);
+        l.linear = k % 6 == 1;
+        l.angleAttenuation = k % 5 != 2;
+        l.angleScale = k % 8 == 5 ? 0.5f : 0;
+        l.extraDist = k % 3 == 0 ? 20.0f : 0;
+        l.fast = k % 2 == 0;
+        l.falloffTolerance = k % 4 == 0 ? 40.0f : 1.0f;
+        l.cluster = l.origin.z > 60 ? 1 : l.origin.z < 40 ? 0 : -1;
+        l.style = k % 3;
+        lights.push_back(l);
+    }
+    return lights;
+}
+
+TEST(BatchedPointLights, SamplesMatchOneAtATime) {
+    World world;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> coord(-100, 100), z(-60, 30);
+    std::vector<std::optional<SamplePoint>> points;
+    for (int i = 0; i < 400; ++i) {
+        SamplePoint s{{coord(rng), coord(rng), z(rng)}, normalize(Vec3{coord(rng), coord(rng), 150}), 0, i % 9 == 0};
+        if (i % 11 == 0) s.normal = {0, 0, -1};  // faces away from most lights
+        if (i % 13 == 0) s.cluster = -1;
+        if (i % 17 == 0) {  // in the other cluster, which sees no light below the slab
+            s.origin.z = 80;
+            s.cluster = 1;
+        }
+        points.push_back(i % 10 == 5 ? std::nullopt : std::optional(s));
+    }
+    std::vector<uint32_t> which;
+    for (uint32_t i = 0; i < points.size(); ++i)
+        if (points[i]) which.push_back(i);
+    const std::vector<Light> lights = someLights(rng);
+    for (const float ignoreNear : {0.0f, 1.5f, 40.0f}) {
+        LightingEnv env;
+        env.scene = world.scene.get();
+        env.tree = world.tree.get();
+        env.settings.ignoreNear = ignoreNear;
+        env.rayMask = 5;
+        for (const Light& base : lights) {
+            Light light = base;
+            // The light on a sample point (zero distance) once.
+            if (&base == &lights[3]) light.origin = points[0]->origin;
+            const float envelope = &base == &lights[1] ? 90.0f : 1e9f;
+            std::vector<ShadowRay> oneRays, batchRays;
+            std::vector<size_t> oneTraced, batchTraced;
+            std::vector<Vec3> oneOut(points.size()), oneDirs(points.size()), batchOut(points.size()),
+                batchDirs(points.size());
+            LightingEnv one = env;
+            one.deferredRays = &oneRays;
+            for (uint32_t i : which) {
+                const size_t before = oneRays.size();
+                std::optional<LightContribution> c = lightToSample(light, *points[i], one, envelope);
+                if (!c) {
+                    oneRays.resize(before);
+                    continue;
+                }
+                oneOut[i] = c->color;
+                oneDirs[i] = c->direction;
+                if (oneRays.size() > before) oneTraced.push_back(i);
+            }
+            LightingEnv batch = env;
+            batch.deferredRays = &batchRays;
+            ASSERT_TRUE(pointLightBatchable(light, batch));
+            pointLightToSamples(light, batch, envelope, points, which, batchOut, batchDirs.data(), batchTraced);
+            ASSERT_EQ(oneTraced, batchTraced);
+            ASSERT_EQ(oneRays.size(), batchRays.size());
+            for (size_t k = 0; k < oneRays.size(); ++k) EXPECT_TRUE(sameRay(oneRays[k], batchRays[k])) << k;
+            for (uint32_t i : which) {
+                EXPECT_TRUE(sameBits(oneOut[i], batchOut[i])) << i;
+                EXPECT_TRUE(sameBits(oneDirs[i], batchDirs[i])) << i;
+            }
+        }
+    }
+    // The exits are all taken: some samples lit with a ray, some without one (too short), some dark.
+    LightingEnv env;
+    env.scene = world.scene.get();
+    env.settings.ignoreNear = 40;
+    std::vector<ShadowRay> rays;
+    env.deferredRays = &rays;
+    std::vector<size_t> traced;
+    std::vector<Vec3> out(points.size());
+    pointLightToSamples(lights[0], env, 1e9f, points, which, out, nullptr, traced);
+    size_t lit = 0;
+    for (uint32_t i : which) lit += out[i] != Vec3{};
+    EXPECT_GT(traced.size(), 0u);
+    EXPECT_GT(lit, traced.size());
+    EXPECT_LT(lit, which.size());
+}
+
+TEST(BatchedPointLights, GridPointsMatchOneAtATime) {
+    World world;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coord(-100, 100), z(-60, 120);
+    std::vector<Vec3> origins;
+    std::vector<int> clusters;
+    for (int i = 0; i < 300; ++i) {
+        origins.push_back({coord(rng), coord(rng), z(rng)});
+        clusters.push_back(origins.back().z > 60 ? 1 : origins.back().z < 40 ? (i % 7 == 0 ? -1 : 0) : -1);
+    }
+    const std::vector<Light> lights = someLights(rng);
+    for (const float ignoreNear : {0.0f, 32.0f}) {
+        LightingEnv env;
+        env.scene = world.scene.get();
+        env.tree = world.tree.get();
+        env.settings.ignoreNear = ignoreNear;
+        env.settings.forceFast = ignoreNear > 0;
+        for (const Light& base : lights) {
+            Light light = base;
+            if (&base == &lights[2]) light.origin = origins[5];
+            const float envelope = &base == &lights[1] ? 90.0f : 1e9f;
+            std::vector<ShadowRay> oneRays, batchRays;
+            std::vector<std::optional<LightContribution>> one(origins.size()), batch(origins.size());
+            std::vector<int32_t> oneRayOf(origins.size(), -1), batchRayOf(origins.size(), -1);
+            LightingEnv oneEnv = env;
+            oneEnv.deferredRays = &oneRays;
+            for (size_t p = 0; p < origins.size(); ++p) {
+                const size_t before = oneRays.size();
+                one[p] = lightToGridPoint(light, origins[p], clusters[p], oneEnv, envelope);
+                if (!one[p]) oneRays.resize(before);
+                else if (oneRays.size() > before) oneRayOf[p] = int32_t(before);
+            }
+            LightingEnv batchEnv = env;
+            batchEnv.deferredRays = &batchRays;
+            ASSERT_TRUE(pointLightBatchableOnGrid(light, batchEnv));
+            pointLightToGridPoints(light, batchEnv, envelope, origins, clusters, batch, batchRayOf);
+            ASSERT_EQ(oneRayOf, batchRayOf);
+            ASSERT_EQ(oneRays.size(), batchRays.size());
+            for (size_t k = 0; k < oneRays.size(); ++k) EXPECT_TRUE(sameRay(oneRays[k], batchRays[k])) << k;
+            for (size_t p = 0; p < origins.size(); ++p) {
+                ASSERT_EQ(one[p].has_value(), batch[p].has_value()) << p;
+                if (!one[p]) continue;
+                EXPECT_TRUE(sameBits(one[p]->color, batch[p]->color)) << p;
+                EXPECT_TRUE(sameBits(one[p]->direction, batch[p]->direction)) << p;
+                EXPECT_EQ(one[p]->style, batch[p]->style);
+            }
+        }
+    }
+}
+
+TEST(BatchedPointLights, OnlyPointAndSpotLightsWithDeferredRays) {
+    World world;
+    std::vector<ShadowRay> rays;
+    LightingEnv env;
+    env.scene = world.scene.get();
+    env.deferredRays = &rays;
+    Light l;
+    EXPECT_TRUE(pointLightBatchable(l, env));
+    EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
+    l.affectsSurfaces = false;
+    EXPECT_FALSE(pointLightBatchable(l, env));
+    EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
+    l.affectsGrid = false;
+    EXPECT_FALSE(pointLightBatchableOnGrid(l, env));
+    for (const LightType t : {LightType::Sun, LightType::Area}) {
+        Light other;
+        other.type = t;
+        EXPECT_FALSE(pointLightBatchable(other, env));
+        EXPECT_FALSE(pointLightBatchableOnGrid(other, env));
+    }
+    Light controlled;
+    controlled.controlled = ControlledParams{};
+    EXPECT_FALSE(pointLightBatchable(controlled, env));
+    LightingEnv sunOnly = env;
+    sunOnly.settings.sunOnly = true;
+    EXPECT_FALSE(pointLightBatchable(Light{}, sunOnly));
+    LightingEnv immediate = env;
+    immediate.deferredRays = nullptr;
+    EXPECT_FALSE(pointLightBatchable(Light{}, immediate));
+    EXPECT_FALSE(pointLightBatchableOnGrid(Light{}, immediate));
+}
+
+}  // namespace
+}  // namespace q3::light
