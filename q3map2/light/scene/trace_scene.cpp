@@ -325,6 +325,33 @@ struct ChunkSegments {
     }
 };
 
+// The points whose hull a hull walk tests for a chunk: every start, then the ends, or when the
+// ends all lie in a small box (the segments of one point light end a hundredth of a unit short of
+// it, each rounded on its own path) that box's corners. The corners hold every end, so the hull
+// only grows by that box and a clear verdict stays sound; the walk reads every point at each
+// plane that cuts the hull's box, and 8 corners stand for up to 64 ends.
+size_t hullPoints(const ChunkSegments& segs, std::array<Vec3, 128>& out) {
+    constexpr float kSmall = 0.25f;
+    Vec3 lo = segs.ends[1], hi = lo;
+    float sum = 0;  // NaN or infinite when any end is: those keep every end (the walk refuses them)
+    for (size_t i = 0; i < segs.count; ++i) {
+        const Vec3 p = segs.ends[2 * i + 1];
+        out[i] = segs.ends[2 * i];
+        sum += p.x + p.y + p.z;
+        lo = vmin(lo, p);
+        hi = vmax(hi, p);
+    }
+    size_t n = segs.count;
+    const Vec3 size = hi - lo;
+    if (!std::isfinite(sum) || segs.count <= 8 || size.x > kSmall || size.y > kSmall || size.z > kSmall) {
+        for (size_t i = 0; i < segs.count; ++i) out[n++] = segs.ends[2 * i + 1];
+        return n;
+    }
+    for (int corner = 0; corner < 8; ++corner)
+        out[n++] = {(corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z};
+    return n;
+}
+
 using HullWalk = std::function<HullVerdict(std::span<const Vec3>)>;
 using SegmentWalk = std::function<bool(const HullVerdict&, Vec3, Vec3)>;
 
@@ -337,7 +364,8 @@ void settleSegments(const ChunkSegments& segs, const HullWalk& hullWalk, const S
     constexpr size_t kMinHull = 4;
     HullVerdict verdict;
     if (hullWalk && segs.count >= kMinHull) {
-        verdict = hullWalk(std::span<const Vec3>(segs.ends.data(), 2 * segs.count));
+        std::array<Vec3, 128> points;
+        verdict = hullWalk(std::span<const Vec3>(points.data(), hullPoints(segs, points)));
         if (verdict.clear) return;
     }
     for (size_t i = 0; i < segs.count; ++i) crosses[segs.slots[i]] = walk(verdict, segs.ends[2 * i], segs.ends[2 * i + 1]);
