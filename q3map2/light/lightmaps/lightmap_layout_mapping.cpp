@@ -121,17 +121,30 @@ private:
         if (sharesFixedNormal(tri)) splitTriangleAs<true>(tri, n, d);
         else splitTriangleAs<false>(tri, n, d);
     }
+    // The corners by address: each half shares two of them with its parent, so only the midpoint
+    // is new (copying whole triangles was most of the cost of a split).
     template <bool sameNormal>
     void splitTriangleAs(const Tri& tri, Vec3 n, float d) {
-        const int longest = longestEdgeToSplit(tri);
+        splitCornersAs<sameNormal>({&tri[0], &tri[1], &tri[2]}, n, d);
+    }
+    template <bool sameNormal>
+    void splitCornersAs(const std::array<const MapVertex*, 3>& corners, Vec3 n, float d) {
+        int longest = -1;
+        float longestDist = kSplitThreshold;
+        for (size_t i = 0; i < 3; ++i) {
+            const float dist = squaredStDistance(*corners[i], *corners[(i + 1) % 3]);
+            if (dist > longestDist) longestDist = dist, longest = int(i);
+        }
         if (longest < 0) return;
-        const MapVertex mid = midpoint<sameNormal>(tri[size_t(longest)], tri[size_t((longest + 1) % 3)]);
+        const size_t a = size_t(longest), b = (a + 1) % 3;
+        const MapVertex mid = midpoint<sameNormal>(*corners[a], *corners[b]);
         mapPoint(mid, n, d);
-        Tri first = tri, second = tri;
-        first[size_t(longest)] = mid;
-        second[size_t((longest + 1) % 3)] = mid;
-        splitTriangleAs<sameNormal>(first, n, d);
-        splitTriangleAs<sameNormal>(second, n, d);
+        std::array<const MapVertex*, 3> half = corners;
+        half[a] = &mid;
+        splitCornersAs<sameNormal>(half, n, d);
+        half[a] = corners[a];
+        half[b] = &mid;
+        splitCornersAs<sameNormal>(half, n, d);
     }
 
     // The vertices, then either the whole triangle (second pass) or only its axial edges (first
