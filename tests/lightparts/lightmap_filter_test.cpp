@@ -45,6 +45,39 @@ TEST(LightmapFilter, BoxFilterIgnoresUnmappedLuxels) {
     EXPECT_EQ(f.state[2], LuxelState::Unmapped);
 }
 
+TEST(LightmapFilter, BoxFilterWithinARectangleMatchesTheWholeImage) {
+    // A light that is zero outside one rectangle: filtering only around it gives the same luxels.
+    for (const int radius : {1, 2, 3}) {
+        LuxelImage img = uniform(20, 15, {0, 0, 0});
+        unsigned seed = 5;
+        auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) >> 16; };
+        const LuxelRect lit{5, 9, 3, 7};
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const size_t i = img.index(x, y);
+                if (next() % 5 == 0) img.state[i] = LuxelState::Unmapped;
+                const bool inside = x >= lit.x0 && x <= lit.x1 && y >= lit.y0 && y <= lit.y1;
+                if (inside && next() % 3 != 0) img.color[i] = {float(next() % 100), float(next() % 7), 1};
+            }
+        LuxelRect whole;
+        const LuxelImage f = boxFilterLuxels(img, radius, &whole);
+        std::vector<Vec3> within(img.color.size(), Vec3{-1, -1, -1});
+        const LuxelRect rect = boxFilterLuxelsWithin(img, radius, lit, within);
+        EXPECT_EQ(rect.x0, whole.x0);
+        EXPECT_EQ(rect.x1, whole.x1);
+        EXPECT_EQ(rect.y0, whole.y0);
+        EXPECT_EQ(rect.y1, whole.y1);
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const size_t i = img.index(x, y);
+                if (x >= rect.x0 && x <= rect.x1 && y >= rect.y0 && y <= rect.y1)
+                    EXPECT_EQ(within[i], f.color[i]) << x << "," << y;
+                else
+                    EXPECT_EQ(f.color[i], (Vec3{})) << x << "," << y;
+            }
+    }
+}
+
 TEST(LightmapFilter, FillFromNeighbours) {
     LuxelImage img = uniform(3, 3, {0, 0, 0});
     for (int i = 0; i < 9; ++i) img.color[size_t(i)] = {float(i), 0, 0};

@@ -12,10 +12,7 @@ int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool f
     return luxels;
 }
 
-LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonzero) {
-    if (nonzero) *nonzero = LuxelRect{0, light.width - 1, 0, light.height - 1};
-    if (radius <= 0) return light;
-    LuxelImage out = light;
+LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect within, std::vector<Vec3>& out) {
     // Only lit Mapped luxels feed the means: a luxel whose square holds none keeps its zero, so
     // only the rectangle around them, grown by the radius, needs filtering (a light usually
     // reaches a corner of a large lightmap, and this runs once a light).
@@ -27,8 +24,8 @@ LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonze
         }
         r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x), r.y0 = std::min(r.y0, y), r.y1 = std::max(r.y1, y);
     };
-    for (int y = 0; y < light.height; ++y)
-        for (int x = 0; x < light.width; ++x) {
+    for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y)
+        for (int x = std::max(0, within.x0); x <= std::min(light.width - 1, within.x1); ++x) {
             const size_t i = light.index(x, y);
             if (light.color[i] == Vec3{}) continue;
             grow(any, x, y);
@@ -40,7 +37,9 @@ LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonze
         grow(any, lit.x0, lit.y0);
         grow(any, lit.x1, lit.y1);
     }
-    if (nonzero) *nonzero = any;
+    out.resize(light.color.size());
+    for (int y = any.y0; y <= any.y1; ++y)
+        for (int x = any.x0; x <= any.x1; ++x) out[light.index(x, y)] = light.color[light.index(x, y)];
     for (int y = lit.y0; y <= lit.y1; ++y) {
         for (int x = lit.x0; x <= lit.x1; ++x) {
             if (light.state[light.index(x, y)] != LuxelState::Mapped) continue;
@@ -56,9 +55,22 @@ LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonze
                     weightSum += weight;
                 }
             }
-            if (weightSum > 0.0f) out.color[light.index(x, y)] = sum / weightSum;
+            if (weightSum > 0.0f) out[light.index(x, y)] = sum / weightSum;
         }
     }
+    return any;
+}
+
+LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonzero) {
+    if (nonzero) *nonzero = LuxelRect{0, light.width - 1, 0, light.height - 1};
+    if (radius <= 0) return light;
+    LuxelImage out = light;
+    std::vector<Vec3> filtered;
+    const LuxelRect any =
+        boxFilterLuxelsWithin(light, radius, LuxelRect{0, light.width - 1, 0, light.height - 1}, filtered);
+    for (int y = any.y0; y <= any.y1; ++y)
+        for (int x = any.x0; x <= any.x1; ++x) out.color[light.index(x, y)] = filtered[light.index(x, y)];
+    if (nonzero) *nonzero = any;
     return out;
 }
 

@@ -45,6 +45,11 @@ struct LuxelRect {
 // luxels is visited: elsewhere every mean is of zeros. `nonzero`, when given, receives a rectangle
 // outside which every luxel of the result is zero.
 LuxelImage boxFilterLuxels(const LuxelImage& light, int radius, LuxelRect* nonzero = nullptr);
+// The same for a light whose luxels outside `within` are all zero, visiting only the rectangles
+// around its lit ones (radius > 0): returns the rectangle outside which every filtered luxel is
+// zero, and writes the filtered colours inside it to `out` (resized to the image; the rest of it
+// is left as it was).
+LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect within, std::vector<Vec3>& out);
 
 // The final neighbour fill: each Unmapped or Occluded luxel (and, with splotchFix, each luxel with a
 // channel at or below the ambient) takes the mean of its Mapped 3x3 neighbours (neighbours equal to

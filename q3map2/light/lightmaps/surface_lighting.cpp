@@ -83,6 +83,15 @@ struct LuxelTiles {
         for (uint32_t t : tiles)
             for (uint32_t i : luxels[t]) visit(i);
     }
+    // The smallest rectangle holding the luxels of `tiles` (empty: x1 < x0) in a lightmap `width` wide.
+    LuxelRect rectOf(std::span<const uint32_t> tiles, int width) const {
+        LuxelRect r{std::numeric_limits<int>::max(), -1, std::numeric_limits<int>::max(), -1};
+        forEachLuxel(tiles, [&](uint32_t i) {
+            const int x = int(i % uint32_t(width)), y = int(i / uint32_t(width));
+            r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x), r.y0 = std::min(r.y0, y), r.y1 = std::max(r.y1, y);
+        });
+        return r;
+    }
 };
 
 constexpr int kTileEdge = 8;  // super luxels per tile edge
@@ -370,11 +379,18 @@ std::vector<Vec3> downsampleMean(const std::vector<Vec3>& super, int superWidth,
 // q3map2's adaptive sub-sampling (-samples N): a walk over every 2x2 stamp of the light's luxels,
 // in rows; a stamp with lit and unlit luxels and more than 4 in some channel sub-samples each of its
 // luxels that may still take a sample, in place, so later stamps see the refined values.
+// `lit` holds every luxel of `color` that is not zero, and grows with the refined ones: a stamp
+// outside it is all zeros when its turn comes, so the walk visits only the stamps that meet it
+// (a light usually reaches a corner of a large lightmap, and this runs once a light). `samples`
+// (all 1, as left by the previous call) counts each luxel's samples.
 void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vector<std::optional<SamplePoint>>& points,
-                 int w, int h, int maxSamples, std::vector<Vec3>& color) {
-    std::vector<int> samples(points.size(), 1);
-    for (int y = 0; y + 1 < h; ++y)
-        for (int x = 0; x + 1 < w; ++x) {
+                 int w, int h, int maxSamples, std::vector<Vec3>& color, std::vector<int>& samples, LuxelRect& lit) {
+    if (lit.x1 < lit.x0) return;
+    auto grow = [&lit](int x, int y) {
+        lit.x0 = std::min(lit.x0, x), lit.x1 = std::max(lit.x1, x), lit.y0 = std::min(lit.y0, y), lit.y1 = std::max(lit.y1, y);
+    };
+    for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y)
+        for (int x = std::max(0, lit.x0 - 1); x + 1 < w && x <= lit.x1; ++x) {
             const int sx[4] = {x, x + 1, x, x + 1}, sy[4] = {y, y, y + 1, y + 1};
             int mapped = 0, lighted = 0;
             Vec3 total;
@@ -392,8 +408,11 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
                 color[i] = sampler.subsample(light, points, w, h, sx[t], sy[t], points[i]->origin, 0.25f, samples[i],
                                              maxSamples, color[i]);
                 ++samples[i];
+                grow(sx[t], sy[t]);
             }
         }
+    for (int y = lit.y0; y <= lit.y1; ++y)
+        std::fill_n(samples.begin() + ptrdiff_t(y) * w + lit.x0, lit.x1 - lit.x0 + 1, 1);
 }
 
 // The rings of unmapped luxels around the mapped ones (LuxelSampler::ringPoint), grown
@@ -585,6 +604,8 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     single.state = light.images[0].state;
     std::vector<Vec3> singleDirs(pass.deluxe ? points.size() : 0);
     std::vector<uint8_t> skip(points.size(), 0);  // -cheap: luxels already saturated
+    std::vector<int> subsamples(maxLevel > 0 ? points.size() : 0, 1);  // refineEdges' sample counts
+    std::vector<Vec3> filtered;  // a filtered light (boxFilterLuxelsWithin)
     const LuxelTiles tiles(points, w, h, kTileEdge);
     std::vector<uint32_t> active;  // tiles the light reaches
     LuxelSampler::Scratch scratch;
@@ -633,20 +654,35 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
         }
         bool any = false;
         tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
-        if (!any && maxLevel == 0) continue;
-        // q3map2 skips sub-sampling where the light is filtered (it would be smoothed away).
-        if (maxLevel > 0 && radius == 0) refineEdges(sampler, lt, points, w, h, o.lightSamples, single.color);
+        if (!any) continue;  // sub-sampling and filtering keep an all-dark light dark
+        if (radius == 0) {
+            // Sub-sampling (q3map2 skips it where the light is filtered: it would be smoothed away).
+            // Outside `lit` the light is zero, which leaves the sums as they are.
+            LuxelRect lit = tiles.rectOf(active, w);
+            refineEdges(sampler, lt, points, w, h, o.lightSamples, single.color, subsamples, lit);
+            for (int y = lit.y0; y <= lit.y1; ++y)
+                for (int x = lit.x0; x <= lit.x1; ++x) {
+                    const size_t i = size_t(y) * size_t(w) + size_t(x);
+                    if (points[i]) {
+                        target.color[i] += single.color[i];
+                        if (withDirs) light.directions[i] += singleDirs[i] * brightness(single.color[i]);
+                    }
+                    single.color[i] = Vec3{};
+                }
+            continue;
+        }
         // Outside `changed` the light adds zeros, which leave the sums as they are.
-        LuxelRect changed{0, w - 1, 0, h - 1};
-        const LuxelImage& add = radius > 0 ? boxFilterLuxels(single, radius, &changed) : single;
+        const LuxelRect lit = tiles.rectOf(active, w);
+        const LuxelRect changed = boxFilterLuxelsWithin(single, radius, lit, filtered);
         for (int y = changed.y0; y <= changed.y1; ++y)
             for (int x = changed.x0; x <= changed.x1; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
                 if (!points[i]) continue;
-                target.color[i] += add.color[i];
-                if (withDirs) light.directions[i] += singleDirs[i] * brightness(add.color[i]);
+                target.color[i] += filtered[i];
+                if (withDirs) light.directions[i] += singleDirs[i] * brightness(filtered[i]);
             }
-        std::fill(single.color.begin(), single.color.end(), Vec3{});
+        for (int y = lit.y0; y <= lit.y1; ++y)
+            std::fill_n(single.color.begin() + ptrdiff_t(y) * w + lit.x0, lit.x1 - lit.x0 + 1, Vec3{});
     }
 
     for (size_t k = 0; k < light.images.size(); ++k) {
