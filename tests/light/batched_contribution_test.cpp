@@ -1,5 +1,6 @@
-// The batched point and spot light paths (pointLightToSamples, pointLightToGridPoints) against the
-// one-sample functions they stand in for: the same contributions, rays and ray order, bit for bit.
+// The batched light paths (lightToSamples for point, spot and area lights, pointLightToGridPoints)
+// against the one-sample functions they stand in for: the same contributions, rays and ray order,
+// bit for bit.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -69,6 +70,22 @@ std::vector<Light> someLights(std::mt19937& rng) {
     return lights;
 }
 
+// Area lights: emitters facing down and up, one-sided and two-sided, -fast or not.
+std::vector<Light> someAreaLights() {
+    std::vector<Light> lights;
+    for (const float facing : {-1.0f, 1.0f})
+        for (const float h : {-10.0f, 25.0f}) {
+            std::vector<Light> square = test::squareEmitterLights(4000, 30, h, facing);
+            for (Light& l : square) {
+                l.twoSided = h > 0;
+                l.fast = facing > 0;
+                l.cluster = 0;
+                lights.push_back(l);
+            }
+        }
+    return lights;
+}
+
 TEST(BatchedPointLights, SamplesMatchOneAtATime) {
     World world;
     std::mt19937 rng(7);
@@ -87,12 +104,14 @@ TEST(BatchedPointLights, SamplesMatchOneAtATime) {
     std::vector<uint32_t> which;
     for (uint32_t i = 0; i < points.size(); ++i)
         if (points[i]) which.push_back(i);
-    const std::vector<Light> lights = someLights(rng);
+    std::vector<Light> lights = someLights(rng);
+    for (const Light& l : someAreaLights()) lights.push_back(l);
     for (const float ignoreNear : {0.0f, 1.5f, 40.0f}) {
         LightingEnv env;
         env.scene = world.scene.get();
         env.tree = world.tree.get();
         env.settings.ignoreNear = ignoreNear;
+        env.settings.faster = ignoreNear == 1.5f;  // area lights as inverse square
         env.rayMask = 5;
         for (const Light& base : lights) {
             Light light = base;
@@ -118,8 +137,8 @@ TEST(BatchedPointLights, SamplesMatchOneAtATime) {
             }
             LightingEnv batch = env;
             batch.deferredRays = &batchRays;
-            ASSERT_TRUE(pointLightBatchable(light, batch));
-            pointLightToSamples(light, batch, envelope, points, which, batchOut, batchDirs.data(), batchTraced);
+            ASSERT_TRUE(samplesBatchable(light, batch));
+            lightToSamples(light, batch, envelope, points, which, batchOut, batchDirs.data(), batchTraced);
             ASSERT_EQ(oneTraced, batchTraced);
             ASSERT_EQ(oneRays.size(), batchRays.size());
             for (size_t k = 0; k < oneRays.size(); ++k) EXPECT_TRUE(sameRay(oneRays[k], batchRays[k])) << k;
@@ -137,7 +156,7 @@ TEST(BatchedPointLights, SamplesMatchOneAtATime) {
     env.deferredRays = &rays;
     std::vector<size_t> traced;
     std::vector<Vec3> out(points.size());
-    pointLightToSamples(lights[0], env, 1e9f, points, which, out, nullptr, traced);
+    lightToSamples(lights[0], env, 1e9f, points, which, out, nullptr, traced);
     size_t lit = 0;
     for (uint32_t i : which) lit += out[i] != Vec3{};
     EXPECT_GT(traced.size(), 0u);
@@ -195,35 +214,36 @@ TEST(BatchedPointLights, GridPointsMatchOneAtATime) {
     }
 }
 
-TEST(BatchedPointLights, OnlyPointAndSpotLightsWithDeferredRays) {
+TEST(BatchedPointLights, WhichLightsAndEnvironmentsTakeTheBatch) {
     World world;
     std::vector<ShadowRay> rays;
     LightingEnv env;
     env.scene = world.scene.get();
     env.deferredRays = &rays;
     Light l;
-    EXPECT_TRUE(pointLightBatchable(l, env));
+    EXPECT_TRUE(samplesBatchable(l, env));
     EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
     l.affectsSurfaces = false;
-    EXPECT_FALSE(pointLightBatchable(l, env));
+    EXPECT_FALSE(samplesBatchable(l, env));
     EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
     l.affectsGrid = false;
     EXPECT_FALSE(pointLightBatchableOnGrid(l, env));
-    for (const LightType t : {LightType::Sun, LightType::Area}) {
-        Light other;
-        other.type = t;
-        EXPECT_FALSE(pointLightBatchable(other, env));
-        EXPECT_FALSE(pointLightBatchableOnGrid(other, env));
-    }
+    Light sun, area;
+    sun.type = LightType::Sun;
+    area.type = LightType::Area;
+    EXPECT_FALSE(samplesBatchable(sun, env));
+    EXPECT_FALSE(pointLightBatchableOnGrid(sun, env));
+    EXPECT_TRUE(samplesBatchable(area, env));
+    EXPECT_FALSE(pointLightBatchableOnGrid(area, env));
     Light controlled;
     controlled.controlled = ControlledParams{};
-    EXPECT_FALSE(pointLightBatchable(controlled, env));
+    EXPECT_FALSE(samplesBatchable(controlled, env));
     LightingEnv sunOnly = env;
     sunOnly.settings.sunOnly = true;
-    EXPECT_FALSE(pointLightBatchable(Light{}, sunOnly));
+    EXPECT_FALSE(samplesBatchable(Light{}, sunOnly));
     LightingEnv immediate = env;
     immediate.deferredRays = nullptr;
-    EXPECT_FALSE(pointLightBatchable(Light{}, immediate));
+    EXPECT_FALSE(samplesBatchable(Light{}, immediate));
     EXPECT_FALSE(pointLightBatchableOnGrid(Light{}, immediate));
 }
 

@@ -16,6 +16,7 @@ namespace q3::light {
 namespace {
 
 using test::quad;
+using test::squareEmitterLights;
 
 Light pointLight(Vec3 origin, float intensity) {
     Light l;
@@ -317,20 +318,6 @@ TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
 
 // The area lights of a square emitter of `surfaceLight` (no backsplash), `half` units from its
 // centre to each side at height `h`, facing along z by `facing`.
-std::vector<Light> squareEmitterLights(float surfaceLight, float half, float h, float facing) {
-    LightingShader sh;
-    sh.surfaceLight = surfaceLight;
-    sh.backsplashFraction = 0;
-    sh.backsplashSet = true;
-    EmitterGeometry g;
-    g.xyz = {{-half, -half, h}, {half, -half, h}, {half, half, h}, {-half, half, h}};
-    g.normals.assign(4, Vec3{0, 0, facing});
-    g.triangles = {0, 1, 2, 0, 2, 3};
-    std::vector<Light> lights;
-    appendAreaLights(lights, g, sh, {});
-    return lights;
-}
-
 TEST(AreaLight, ContributionFromSurfaceLight) {
     const float h = 100;
     const std::vector<Light> lights = squareEmitterLights(1000, 50, h, -1);

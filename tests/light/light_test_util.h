@@ -31,6 +31,22 @@ inline SceneSurface quad(Vec3 corner, Vec3 edgeU, Vec3 edgeV, const LightingShad
     return s;
 }
 
+// The area lights of a square emitter (2 * half on a side, at height h, facing +z or -z) of a
+// surfacelight shader without backsplash.
+inline std::vector<Light> squareEmitterLights(float surfaceLight, float half, float h, float facing) {
+    LightingShader sh;
+    sh.surfaceLight = surfaceLight;
+    sh.backsplashFraction = 0;
+    sh.backsplashSet = true;
+    EmitterGeometry g;
+    g.xyz = {{-half, -half, h}, {half, -half, h}, {half, half, h}, {-half, half, h}};
+    g.normals.assign(4, Vec3{0, 0, facing});
+    g.triangles = {0, 1, 2, 0, 2, 3};
+    std::vector<Light> lights;
+    appendAreaLights(lights, g, sh, {});
+    return lights;
+}
+
 // A log that prints nothing and remembers every message.
 struct CapturingLog {
     Log log{false};

@@ -178,14 +178,14 @@ struct LuxelSampler {
         rayLuxel.clear();
         LightingEnv deferred = env;
         deferred.deferredRays = env.scene ? &rays : nullptr;
-        if (pointLightBatchable(light, deferred)) {
+        if (samplesBatchable(light, deferred)) {
             std::vector<uint32_t>& lit = scratch.luxels;
             lit.clear();
             tiles.forEachLuxel(active, [&](uint32_t i) {
                 out[i] = Vec3{};
                 if (points[i] && !skip[i]) lit.push_back(i);
             });
-            pointLightToSamples(light, deferred, envelope, points, lit, out, dirs ? dirs->data() : nullptr, rayLuxel);
+            lightToSamples(light, deferred, envelope, points, lit, out, dirs ? dirs->data() : nullptr, rayLuxel);
         } else {
             tiles.forEachLuxel(active, [&](uint32_t i) {
                 out[i] = Vec3{};

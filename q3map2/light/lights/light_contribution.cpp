@@ -166,6 +166,52 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
     return add;
 }
 
+// q3map2's area light at a luxel or vertex before occlusion: the light's amount (0 when it sends
+// none), the point its shadow ray aims at (the emitter's origin, or just behind it for a two-sided
+// emitter seen from its back), and the unclamped distance and direction to that point.
+[[gnu::always_inline]] inline float areaLightAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided, float envelope,
+                                                 const LightingEnv& env, Vec3& target, float& dist, Vec3& dir) {
+    const float d = dot(p, light.normal) - light.planeDist;
+    if (d < 3.0f) {
+        if (!light.twoSided && d < -1.0f) return 0;                // behind the emitter
+        if (d > -3.0f && dot(n, light.normal) > 0.9f) return 0;  // coplanar with it
+    }
+    // Points close to the emitter plane are pushed in front of it, so that surfaces meeting an
+    // emitter do not get black edges.
+    const Vec3 pushed = (d > -8.0f && d < 8.0f) ? p + light.normal * (8.0f - d) : p;
+    target = light.origin;
+    Vec3 toLight = target - p;
+    dist = length(toLight);
+    if (dist >= envelope) return 0;
+    dir = dist > 0 ? toLight / dist : n;
+    float add;
+    if (env.settings.faster) {
+        float angle = dot(n, dir);
+        if (twoSided && angle < 0) angle = -angle;
+        angle *= -dot(light.normal, dir);
+        if (angle == 0) return 0;
+        if (angle < 0 && (twoSided || light.twoSided)) angle = -angle;
+        const float clamped = clampedDistance(dist, light.extraDist);
+        add = light.photons / (clamped * clamped) * angle;
+    } else {
+        if (surelyBelowFastTolerance(light, pushed, n, env)) return 0;
+        float factor = pointToPolygonFormFactor(pushed, n, light.winding);
+        if (factor == 0) return 0;
+        if (factor < 0) {
+            if (!(twoSided || light.twoSided)) return 0;
+            factor = -factor;
+            target = light.origin - light.normal * 2.0f;  // trace to the emitter's other side
+            toLight = target - p;
+            dist = length(toLight);
+            if (dist >= envelope) return 0;
+            dir = dist > 0 ? toLight / dist : n;
+        }
+        add = factor * light.add;
+    }
+    if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return 0;
+    return add;
+}
+
 // q3map2's point or spot light at a grid point `dist` from it (the unclamped distance), before
 // the -fast tolerance and occlusion.
 [[gnu::always_inline]] inline float pointLightAtGridPoint(const Light& light, Vec3 origin, float dist) {
@@ -279,44 +325,10 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
             return finish(light, light.color * add, dir, occlusion(env, p, light.origin));
         }
         case LightType::Area: {
-            const float d = dot(p, light.normal) - light.planeDist;
-            if (d < 3.0f) {
-                if (!light.twoSided && d < -1.0f) return std::nullopt;        // behind the emitter
-                if (d > -3.0f && dot(n, light.normal) > 0.9f) return std::nullopt;  // coplanar with it
-            }
-            // Points close to the emitter plane are pushed in front of it, so that surfaces meeting
-            // an emitter do not get black edges.
-            const Vec3 pushed = (d > -8.0f && d < 8.0f) ? p + light.normal * (8.0f - d) : p;
-            Vec3 target = light.origin;
-            Vec3 toLight = target - p;
-            float dist = length(toLight);
-            if (dist >= envelope) return std::nullopt;
-            Vec3 dir = dist > 0 ? toLight / dist : n;
-            float add;
-            if (env.settings.faster) {
-                float angle = dot(n, dir);
-                if (sample.twoSided && angle < 0) angle = -angle;
-                angle *= -dot(light.normal, dir);
-                if (angle == 0) return std::nullopt;
-                if (angle < 0 && (sample.twoSided || light.twoSided)) angle = -angle;
-                dist = clampedDistance(dist, light.extraDist);
-                add = light.photons / (dist * dist) * angle;
-            } else {
-                if (surelyBelowFastTolerance(light, pushed, n, env)) return std::nullopt;
-                float factor = pointToPolygonFormFactor(pushed, n, light.winding);
-                if (factor == 0) return std::nullopt;
-                if (factor < 0) {
-                    if (!(sample.twoSided || light.twoSided)) return std::nullopt;
-                    factor = -factor;
-                    target = light.origin - light.normal * 2.0f;  // trace to the emitter's other side
-                    toLight = target - p;
-                    dist = length(toLight);
-                    if (dist >= envelope) return std::nullopt;
-                    dir = dist > 0 ? toLight / dist : n;
-                }
-                add = factor * light.add;
-            }
-            if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
+            Vec3 target, dir;
+            float dist;
+            const float add = areaLightAdd(light, p, n, sample.twoSided, envelope, env, target, dist, dir);
+            if (add <= 0) return std::nullopt;
             return finish(light, light.color * add, dir, occlusion(env, p, target));
         }
     }
@@ -370,14 +382,17 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
     return finish(light, light.color * add, dir, occlusion(env, origin, light.origin));
 }
 
-bool pointLightBatchable(const Light& light, const LightingEnv& env) {
-    return (light.type == LightType::Point || light.type == LightType::Spot) && !light.controlled &&
-           light.affectsSurfaces && !env.settings.sunOnly && env.scene && env.deferredRays;
+bool samplesBatchable(const Light& light, const LightingEnv& env) {
+    return light.type != LightType::Sun && !light.controlled && light.affectsSurfaces && !env.settings.sunOnly &&
+           env.scene && env.deferredRays;
 }
 
-void pointLightToSamples(const Light& light, const LightingEnv& env, float envelope,
-                         std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
-                         std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced) {
+namespace {
+
+template <bool area>
+void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope,
+                      std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
+                      std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced) {
     std::vector<ShadowRay>& rays = *env.deferredRays;
     const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
     // The PVS verdict of the last cluster asked: runs of samples share one.
@@ -392,17 +407,18 @@ void pointLightToSamples(const Light& light, const LightingEnv& env, float envel
             lastCulled = pvsCulledInline(light, sample.cluster, env);
         }
         if (lastCulled) continue;
-        Vec3 dir;
+        Vec3 target = light.origin, dir;
         float dist;
-        const float add = pointLightAdd(light, p, n, sample.twoSided, envelope, env.settings, dist, dir);
+        const float add = area ? areaLightAdd(light, p, n, sample.twoSided, envelope, env, target, dist, dir)
+                               : pointLightAdd(light, p, n, sample.twoSided, envelope, env.settings, dist, dir);
         if (add <= 0) continue;
         const Vec3 color = light.color * add;
         if (color == Vec3{}) continue;
-        // occlusion()'s deferred ray from p to the light (segmentRay: the same vector, length and
+        // occlusion()'s deferred ray from p to the target (segmentRay: the same vector, length and
         // direction as above), or at once the structural solid test of a segment too short for one.
         const float tfar = dist - std::min(0.01f, dist * 0.5f);
         if (dist <= 0 || tfar <= env.settings.ignoreNear) {
-            if (!env.clearOfSolid && env.scene->crossesSolid(p, light.origin)) continue;
+            if (!env.clearOfSolid && env.scene->crossesSolid(p, target)) continue;
         } else {
             rays.push_back(ShadowRay{p, dir, firstDepth, tfar, false, -1, env.rayMask, env.clearOfSolid});
             traced.push_back(i);
@@ -410,6 +426,17 @@ void pointLightToSamples(const Light& light, const LightingEnv& env, float envel
         out[i] = color;
         if (dirs) dirs[i] = dir;
     }
+}
+
+}  // namespace
+
+void lightToSamples(const Light& light, const LightingEnv& env, float envelope,
+                    std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
+                    std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced) {
+    if (light.type == LightType::Area)
+        lightToSamplesOf<true>(light, env, envelope, points, which, out, dirs, traced);
+    else
+        lightToSamplesOf<false>(light, env, envelope, points, which, out, dirs, traced);
 }
 
 bool pointLightBatchableOnGrid(const Light& light, const LightingEnv& env) {

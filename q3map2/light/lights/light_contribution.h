@@ -82,17 +82,17 @@ std::optional<LightContribution> lightToSample(const Light& light, const SampleP
 std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origin, int cluster,
                                                   const LightingEnv& env, float envelope);
 
-// Whether pointLightToSamples takes `light` for `env`: a point or spot light of q3map2's model that
-// lights surfaces, with shadow rays deferred (env.deferredRays and a scene) and no -sunonly.
-bool pointLightBatchable(const Light& light, const LightingEnv& env);
+// Whether lightToSamples takes `light` for `env`: a point, spot or area light of q3map2's model
+// that lights surfaces, with shadow rays deferred (env.deferredRays and a scene) and no -sunonly.
+bool samplesBatchable(const Light& light, const LightingEnv& env);
 // lightToSample for the samples points[i], i in `which` (all set), of one light that
-// pointLightBatchable takes: out[i] (and dirs[i] when given) receives each contribution before
+// samplesBatchable takes: out[i] (and dirs[i] when given) receives each contribution before
 // occlusion and is left alone where there is none; the index of each deferred ray's sample is
 // appended to `traced`, in the order of the rays. One PVS lookup serves a run of samples in one
 // cluster.
-void pointLightToSamples(const Light& light, const LightingEnv& env, float envelope,
-                         std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
-                         std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced);
+void lightToSamples(const Light& light, const LightingEnv& env, float envelope,
+                    std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
+                    std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced);
 
 // The same for grid points (lightToGridPoint) of a light that pointLightBatchableOnGrid takes: out[p]
 // receives each contribution before occlusion, rayOf[p] the index of its deferred ray; both are
