@@ -1,4 +1,4 @@
-// The batched light paths (lightToSamples for point, spot and area lights, pointLightToGridPoints)
+// The batched light paths (lightToSamples and lightToGridPoints, for point, spot and area lights)
 // against the one-sample functions they stand in for: the same contributions, rays and ray order,
 // bit for bit.
 #include <gtest/gtest.h>
@@ -174,13 +174,15 @@ TEST(BatchedPointLights, GridPointsMatchOneAtATime) {
         origins.push_back({coord(rng), coord(rng), z(rng)});
         clusters.push_back(origins.back().z > 60 ? 1 : origins.back().z < 40 ? (i % 7 == 0 ? -1 : 0) : -1);
     }
-    const std::vector<Light> lights = someLights(rng);
-    for (const float ignoreNear : {0.0f, 32.0f}) {
+    std::vector<Light> lights = someLights(rng);
+    for (const Light& l : someAreaLights()) lights.push_back(l);
+    for (const int setting : {0, 1, 2}) {
         LightingEnv env;
         env.scene = world.scene.get();
         env.tree = world.tree.get();
-        env.settings.ignoreNear = ignoreNear;
-        env.settings.forceFast = ignoreNear > 0;
+        env.settings.ignoreNear = setting > 0 ? 32.0f : 0.0f;
+        env.settings.forceFast = setting == 1;
+        env.settings.faster = setting == 2;  // area lights as inverse square
         for (const Light& base : lights) {
             Light light = base;
             if (&base == &lights[2]) light.origin = origins[5];
@@ -198,8 +200,10 @@ TEST(BatchedPointLights, GridPointsMatchOneAtATime) {
             }
             LightingEnv batchEnv = env;
             batchEnv.deferredRays = &batchRays;
-            ASSERT_TRUE(pointLightBatchableOnGrid(light, batchEnv));
-            pointLightToGridPoints(light, batchEnv, envelope, origins, clusters, batch, batchRayOf);
+            ASSERT_TRUE(gridPointsBatchable(light, batchEnv));
+            std::vector<uint32_t> all(origins.size());
+            for (uint32_t p = 0; p < all.size(); ++p) all[p] = p;
+            lightToGridPoints(light, batchEnv, envelope, origins, clusters, all, batch, batchRayOf);
             ASSERT_EQ(oneRayOf, batchRayOf);
             ASSERT_EQ(oneRays.size(), batchRays.size());
             for (size_t k = 0; k < oneRays.size(); ++k) EXPECT_TRUE(sameRay(oneRays[k], batchRays[k])) << k;
@@ -222,19 +226,19 @@ TEST(BatchedPointLights, WhichLightsAndEnvironmentsTakeTheBatch) {
     env.deferredRays = &rays;
     Light l;
     EXPECT_TRUE(samplesBatchable(l, env));
-    EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
+    EXPECT_TRUE(gridPointsBatchable(l, env));
     l.affectsSurfaces = false;
     EXPECT_FALSE(samplesBatchable(l, env));
-    EXPECT_TRUE(pointLightBatchableOnGrid(l, env));
+    EXPECT_TRUE(gridPointsBatchable(l, env));
     l.affectsGrid = false;
-    EXPECT_FALSE(pointLightBatchableOnGrid(l, env));
+    EXPECT_FALSE(gridPointsBatchable(l, env));
     Light sun, area;
     sun.type = LightType::Sun;
     area.type = LightType::Area;
     EXPECT_FALSE(samplesBatchable(sun, env));
-    EXPECT_FALSE(pointLightBatchableOnGrid(sun, env));
+    EXPECT_FALSE(gridPointsBatchable(sun, env));
     EXPECT_TRUE(samplesBatchable(area, env));
-    EXPECT_FALSE(pointLightBatchableOnGrid(area, env));
+    EXPECT_TRUE(gridPointsBatchable(area, env));
     Light controlled;
     controlled.controlled = ControlledParams{};
     EXPECT_FALSE(samplesBatchable(controlled, env));
@@ -244,7 +248,7 @@ TEST(BatchedPointLights, WhichLightsAndEnvironmentsTakeTheBatch) {
     LightingEnv immediate = env;
     immediate.deferredRays = nullptr;
     EXPECT_FALSE(samplesBatchable(Light{}, immediate));
-    EXPECT_FALSE(pointLightBatchableOnGrid(Light{}, immediate));
+    EXPECT_FALSE(gridPointsBatchable(Light{}, immediate));
 }
 
 }  // namespace

@@ -232,6 +232,7 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
         std::vector<Bounds> runBoxes;
+        std::vector<uint32_t> which;  // the points a batched light is asked about
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -251,12 +252,20 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         const Light& light = lights[candidates[k]];
         if (!includes(light)) continue;
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
-        if (pointLightBatchableOnGrid(light, lightEnv)) {
-            pointLightToGridPoints(light, lightEnv, envelopes[candidates[k]], origins, clusters,
-                                   std::span(s.pending).subspan(k * np, np), std::span(s.rayOf).subspan(k * np, np));
+        const bool area = light.type == LightType::Area;
+        if (gridPointsBatchable(light, lightEnv)) {
+            s.which.clear();
+            for (size_t p = 0; p < np; ++p) {
+                if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {
+                    p += kRun - 1;
+                    continue;
+                }
+                s.which.push_back(uint32_t(p));
+            }
+            lightToGridPoints(light, lightEnv, envelopes[candidates[k]], origins, clusters, s.which,
+                              std::span(s.pending).subspan(k * np, np), std::span(s.rayOf).subspan(k * np, np));
             continue;
         }
-        const bool area = light.type == LightType::Area;
         for (size_t p = 0; p < np; ++p) {
             if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {
                 p += kRun - 1;

@@ -226,6 +226,27 @@ bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, cons
     return add;
 }
 
+// q3map2's area light at a grid point `dist` from its origin in direction `dir` (the grid point's
+// normal), before the -fast tolerance and occlusion; 0 when it sends none.
+[[gnu::always_inline]] inline float areaLightAtGridPoint(const Light& light, Vec3 origin, float dist, Vec3 dir,
+                                                         const LightingEnv& env) {
+    if (env.settings.faster) {
+        dist = clampedDistance(dist, light.extraDist);
+        return light.photons / (dist * dist);
+    }
+    const float d = dot(origin, light.normal) - light.planeDist;
+    if (!light.twoSided && d < -1.0f) return 0;
+    const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
+    if (surelyBelowFastTolerance(light, pushed, dir, env)) return 0;
+    float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
+    if (factor == 0) return 0;
+    if (factor < 0) {
+        if (!light.twoSided) return 0;
+        factor = -factor;
+    }
+    return factor * light.add;
+}
+
 }  // namespace
 
 bool pvsCulled(const Light& light, int cluster, const LightingEnv& env) {
@@ -357,27 +378,8 @@ std::optional<LightContribution> lightToGridPoint(const Light& light, Vec3 origi
     // A light on the point has no direction (q3map2 normalises the zero vector to zero): all of its
     // light goes to the ambient part, none to the point's main direction.
     const Vec3 dir = dist > 0 ? toLight / dist : Vec3{};
-    float add = 0;
-    if (light.type == LightType::Area) {
-        if (env.settings.faster) {
-            dist = clampedDistance(dist, light.extraDist);
-            add = light.photons / (dist * dist);
-        } else {
-            const float d = dot(origin, light.normal) - light.planeDist;
-            if (!light.twoSided && d < -1.0f) return std::nullopt;
-            const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
-            if (surelyBelowFastTolerance(light, pushed, dir, env)) return std::nullopt;
-            float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
-            if (factor == 0) return std::nullopt;
-            if (factor < 0) {
-                if (!light.twoSided) return std::nullopt;
-                factor = -factor;
-            }
-            add = factor * light.add;
-        }
-    } else {
-        add = pointLightAtGridPoint(light, origin, dist);
-    }
+    const float add = light.type == LightType::Area ? areaLightAtGridPoint(light, origin, dist, dir, env)
+                                                    : pointLightAtGridPoint(light, origin, dist);
     if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return std::nullopt;
     return finish(light, light.color * add, dir, occlusion(env, origin, light.origin));
 }
@@ -439,20 +441,23 @@ void lightToSamples(const Light& light, const LightingEnv& env, float envelope,
         lightToSamplesOf<false>(light, env, envelope, points, which, out, dirs, traced);
 }
 
-bool pointLightBatchableOnGrid(const Light& light, const LightingEnv& env) {
-    return (light.type == LightType::Point || light.type == LightType::Spot) && !light.controlled &&
-           light.affectsGrid && !env.settings.sunOnly && env.scene && env.deferredRays;
+bool gridPointsBatchable(const Light& light, const LightingEnv& env) {
+    return light.type != LightType::Sun && !light.controlled && light.affectsGrid && !env.settings.sunOnly &&
+           env.scene && env.deferredRays;
 }
 
-void pointLightToGridPoints(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
-                            std::span<const int> clusters, std::span<std::optional<LightContribution>> out,
-                            std::span<int32_t> rayOf) {
+namespace {
+
+template <bool area>
+void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
+                         std::span<const int> clusters, std::span<const uint32_t> which,
+                         std::span<std::optional<LightContribution>> out, std::span<int32_t> rayOf) {
     std::vector<ShadowRay>& rays = *env.deferredRays;
     const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
     const bool fast = light.fast || env.settings.forceFast;
     int lastCluster = -2;
     bool lastCulled = false;
-    for (size_t p = 0; p < origins.size(); ++p) {
+    for (const uint32_t p : which) {
         if (clusters[p] != lastCluster) {
             lastCluster = clusters[p];
             lastCulled = pvsCulledInline(light, clusters[p], env);
@@ -462,12 +467,13 @@ void pointLightToGridPoints(const Light& light, const LightingEnv& env, float en
         const Vec3 toLight = light.origin - origin;
         const float dist = length(toLight);
         if (dist > envelope) continue;
-        const float add = pointLightAtGridPoint(light, origin, dist);
+        // A light on the point has no direction (see lightToGridPoint); the ray is occlusion()'s.
+        const Vec3 dir = dist > 0 ? toLight / dist : Vec3{};
+        const float add =
+            area ? areaLightAtGridPoint(light, origin, dist, dir, env) : pointLightAtGridPoint(light, origin, dist);
         if (add <= 0 || (fast && add <= light.falloffTolerance)) continue;
         const Vec3 color = light.color * add;
         if (color == Vec3{}) continue;
-        // A light on the point has no direction (see lightToGridPoint); the ray is occlusion()'s.
-        const Vec3 dir = dist > 0 ? toLight / dist : Vec3{};
         const float tfar = dist - std::min(0.01f, dist * 0.5f);
         if (dist <= 0 || tfar <= env.settings.ignoreNear) {
             if (!env.clearOfSolid && env.scene->crossesSolid(origin, light.origin)) continue;
@@ -477,6 +483,17 @@ void pointLightToGridPoints(const Light& light, const LightingEnv& env, float en
         }
         out[p] = LightContribution{color, dir, light.style};
     }
+}
+
+}  // namespace
+
+void lightToGridPoints(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
+                       std::span<const int> clusters, std::span<const uint32_t> which,
+                       std::span<std::optional<LightContribution>> out, std::span<int32_t> rayOf) {
+    if (light.type == LightType::Area)
+        lightToGridPointsOf<true>(light, env, envelope, origins, clusters, which, out, rayOf);
+    else
+        lightToGridPointsOf<false>(light, env, envelope, origins, clusters, which, out, rayOf);
 }
 
 void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,

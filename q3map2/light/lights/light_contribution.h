@@ -94,13 +94,14 @@ void lightToSamples(const Light& light, const LightingEnv& env, float envelope,
                     std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
                     std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced);
 
-// The same for grid points (lightToGridPoint) of a light that pointLightBatchableOnGrid takes: out[p]
-// receives each contribution before occlusion, rayOf[p] the index of its deferred ray; both are
-// left alone where there is none.
-bool pointLightBatchableOnGrid(const Light& light, const LightingEnv& env);
-void pointLightToGridPoints(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
-                            std::span<const int> clusters, std::span<std::optional<LightContribution>> out,
-                            std::span<int32_t> rayOf);
+// The same for grid points (lightToGridPoint): for the points origins[p], p in `which`, of a light
+// that gridPointsBatchable takes (any but a sun or a controlled light), out[p] receives each
+// contribution before occlusion and rayOf[p] the index of its deferred ray; both are left alone
+// where there is none.
+bool gridPointsBatchable(const Light& light, const LightingEnv& env);
+void lightToGridPoints(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
+                       std::span<const int> clusters, std::span<const uint32_t> which,
+                       std::span<std::optional<LightContribution>> out, std::span<int32_t> rayOf);
 
 // Every contribution of `lights` to a sample / grid point, in light order.
 void gatherSampleLight(std::span<const Light> lights, const SamplePoint& sample, const LightingEnv& env,
