@@ -232,7 +232,7 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         std::vector<ShadowRay> rays;
         std::vector<Vec3> transmission;
         std::vector<Bounds> runBoxes;
-        std::vector<uint32_t> which;  // the points a batched light is asked about
+        std::vector<uint32_t> which;  // the points a light is asked about
     };
     thread_local Scratch s;
     const size_t np = origins.size(), nl = candidates.size();
@@ -253,24 +253,20 @@ void traceBlockContributions(std::span<const Light> lights, std::span<const uint
         if (!includes(light)) continue;
         const LightingEnv& lightEnv = !clearOfSolid.empty() && clearOfSolid[k] ? deferredClear : deferred;
         const bool area = light.type == LightType::Area;
-        if (gridPointsBatchable(light, lightEnv)) {
-            s.which.clear();
-            for (size_t p = 0; p < np; ++p) {
-                if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {
-                    p += kRun - 1;
-                    continue;
-                }
-                s.which.push_back(uint32_t(p));
-            }
-            lightToGridPoints(light, lightEnv, envelopes[candidates[k]], origins, clusters, s.which,
-                              std::span(s.pending).subspan(k * np, np), std::span(s.rayOf).subspan(k * np, np));
-            continue;
-        }
+        s.which.clear();
         for (size_t p = 0; p < np; ++p) {
             if (area && p % kRun == 0 && areaLightSurelyDarkIn(light, s.runBoxes[p / kRun], env.settings)) {
                 p += kRun - 1;
                 continue;
             }
+            s.which.push_back(uint32_t(p));
+        }
+        if (gridPointsBatchable(light, lightEnv)) {
+            lightToGridPoints(light, lightEnv, envelopes[candidates[k]], origins, clusters, s.which,
+                              std::span(s.pending).subspan(k * np, np), std::span(s.rayOf).subspan(k * np, np));
+            continue;
+        }
+        for (const uint32_t p : s.which) {
             const size_t before = s.rays.size();
             std::optional<LightContribution> c =
                 lightToGridPoint(light, origins[p], clusters[p], lightEnv, envelopes[candidates[k]]);

@@ -17,25 +17,18 @@ LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect w
     // only the rectangle around them, grown by the radius, needs filtering (a light usually
     // reaches a corner of a large lightmap, and this runs once a light).
     LuxelRect lit, any;
-    auto grow = [](LuxelRect& r, int x, int y) {
-        if (r.x1 < r.x0) {
-            r = LuxelRect{x, x, y, y};
-            return;
-        }
-        r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x), r.y0 = std::min(r.y0, y), r.y1 = std::max(r.y1, y);
-    };
     for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y)
         for (int x = std::max(0, within.x0); x <= std::min(light.width - 1, within.x1); ++x) {
             const size_t i = light.index(x, y);
             if (light.color[i] == Vec3{}) continue;
-            grow(any, x, y);
-            if (light.state[i] == LuxelState::Mapped) grow(lit, x, y);
+            any.add(x, y);
+            if (light.state[i] == LuxelState::Mapped) lit.add(x, y);
         }
-    if (lit.x1 >= lit.x0) {
+    if (!lit.empty()) {
         lit = LuxelRect{std::max(0, lit.x0 - radius), std::min(light.width - 1, lit.x1 + radius),
                         std::max(0, lit.y0 - radius), std::min(light.height - 1, lit.y1 + radius)};
-        grow(any, lit.x0, lit.y0);
-        grow(any, lit.x1, lit.y1);
+        any.add(lit.x0, lit.y0);
+        any.add(lit.x1, lit.y1);
     }
     out.resize(light.color.size());
     for (int y = any.y0; y <= any.y1; ++y)

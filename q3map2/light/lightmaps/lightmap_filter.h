@@ -3,6 +3,8 @@
 // q3map2's weights and rules.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +39,16 @@ int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool f
 // A rectangle of luxels, [x0, x1] x [y0, y1]; empty when x1 < x0.
 struct LuxelRect {
     int x0 = 0, x1 = -1, y0 = 0, y1 = -1;
+
+    bool empty() const { return x1 < x0; }
+    // Grows the rectangle to hold luxel (x, y).
+    void add(int x, int y) {
+        if (empty()) {
+            *this = LuxelRect{x, x, y, y};
+            return;
+        }
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
 };
 
 // q3map2's per-light filter: every Mapped luxel becomes the weighted mean of the Mapped luxels in the

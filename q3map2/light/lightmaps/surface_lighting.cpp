@@ -85,11 +85,8 @@ struct LuxelTiles {
     }
     // The smallest rectangle holding the luxels of `tiles` (empty: x1 < x0) in a lightmap `width` wide.
     LuxelRect rectOf(std::span<const uint32_t> tiles, int width) const {
-        LuxelRect r{std::numeric_limits<int>::max(), -1, std::numeric_limits<int>::max(), -1};
-        forEachLuxel(tiles, [&](uint32_t i) {
-            const int x = int(i % uint32_t(width)), y = int(i / uint32_t(width));
-            r.x0 = std::min(r.x0, x), r.x1 = std::max(r.x1, x), r.y0 = std::min(r.y0, y), r.y1 = std::max(r.y1, y);
-        });
+        LuxelRect r;
+        forEachLuxel(tiles, [&](uint32_t i) { r.add(int(i % uint32_t(width)), int(i / uint32_t(width))); });
         return r;
     }
 };
@@ -385,10 +382,7 @@ std::vector<Vec3> downsampleMean(const std::vector<Vec3>& super, int superWidth,
 // (all 1, as left by the previous call) counts each luxel's samples.
 void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vector<std::optional<SamplePoint>>& points,
                  int w, int h, int maxSamples, std::vector<Vec3>& color, std::vector<int>& samples, LuxelRect& lit) {
-    if (lit.x1 < lit.x0) return;
-    auto grow = [&lit](int x, int y) {
-        lit.x0 = std::min(lit.x0, x), lit.x1 = std::max(lit.x1, x), lit.y0 = std::min(lit.y0, y), lit.y1 = std::max(lit.y1, y);
-    };
+    if (lit.empty()) return;
     for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y)
         for (int x = std::max(0, lit.x0 - 1); x + 1 < w && x <= lit.x1; ++x) {
             const int sx[4] = {x, x + 1, x, x + 1}, sy[4] = {y, y, y + 1, y + 1};
@@ -408,7 +402,7 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
                 color[i] = sampler.subsample(light, points, w, h, sx[t], sy[t], points[i]->origin, 0.25f, samples[i],
                                              maxSamples, color[i]);
                 ++samples[i];
-                grow(sx[t], sy[t]);
+                lit.add(sx[t], sy[t]);
             }
         }
     for (int y = lit.y0; y <= lit.y1; ++y)
@@ -655,31 +649,25 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
         bool any = false;
         tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
         if (!any) continue;  // sub-sampling and filtering keep an all-dark light dark
+        // The light is zero outside `lit` (and, once added, outside `changed`), which leaves the
+        // sums as they are there.
+        LuxelRect lit = tiles.rectOf(active, w);
+        LuxelRect changed;
+        const std::vector<Vec3>* add = &single.color;
         if (radius == 0) {
             // Sub-sampling (q3map2 skips it where the light is filtered: it would be smoothed away).
-            // Outside `lit` the light is zero, which leaves the sums as they are.
-            LuxelRect lit = tiles.rectOf(active, w);
             refineEdges(sampler, lt, points, w, h, o.lightSamples, single.color, subsamples, lit);
-            for (int y = lit.y0; y <= lit.y1; ++y)
-                for (int x = lit.x0; x <= lit.x1; ++x) {
-                    const size_t i = size_t(y) * size_t(w) + size_t(x);
-                    if (points[i]) {
-                        target.color[i] += single.color[i];
-                        if (withDirs) light.directions[i] += singleDirs[i] * brightness(single.color[i]);
-                    }
-                    single.color[i] = Vec3{};
-                }
-            continue;
+            changed = lit;
+        } else {
+            changed = boxFilterLuxelsWithin(single, radius, lit, filtered);
+            add = &filtered;
         }
-        // Outside `changed` the light adds zeros, which leave the sums as they are.
-        const LuxelRect lit = tiles.rectOf(active, w);
-        const LuxelRect changed = boxFilterLuxelsWithin(single, radius, lit, filtered);
         for (int y = changed.y0; y <= changed.y1; ++y)
             for (int x = changed.x0; x <= changed.x1; ++x) {
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
                 if (!points[i]) continue;
-                target.color[i] += filtered[i];
-                if (withDirs) light.directions[i] += singleDirs[i] * brightness(filtered[i]);
+                target.color[i] += (*add)[i];
+                if (withDirs) light.directions[i] += singleDirs[i] * brightness((*add)[i]);
             }
         for (int y = lit.y0; y <= lit.y1; ++y)
             std::fill_n(single.color.begin() + ptrdiff_t(y) * w + lit.x0, lit.x1 - lit.x0 + 1, Vec3{});

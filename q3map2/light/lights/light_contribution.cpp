@@ -52,18 +52,30 @@ float angleTerm(float dot, bool twoSided, bool halfLambert) {
     return dot;
 }
 
+// What becomes of a segment's shadow ray when the rays are deferred: appended to env.deferredRays,
+// or, too short for an occluder to count, settled at once by structural solid alone (the scene
+// tests the other rays for solid itself, after Embree, so that blocked rays skip the tree walk).
+enum class DeferredRay { Queued, Open, Blocked };
+
+// The segment from `from` to `to`, `dist` long in unit `direction` (as segmentRay computes them).
+[[gnu::always_inline]] inline DeferredRay deferShadowRay(const LightingEnv& env, Vec3 from, Vec3 to, Vec3 direction,
+                                                          float dist) {
+    std::optional<ShadowRay> ray = TraceScene::segmentRayAlong(from, direction, dist, env.settings.ignoreNear);
+    if (!ray) return !env.clearOfSolid && env.scene->crossesSolid(from, to) ? DeferredRay::Blocked : DeferredRay::Open;
+    ray->mask = env.rayMask;
+    ray->clearOfSolid = env.clearOfSolid;
+    env.deferredRays->push_back(*ray);
+    return DeferredRay::Queued;
+}
+
 Vec3 occlusion(const LightingEnv& env, Vec3 from, Vec3 to) {
     if (!env.scene) return {1, 1, 1};
     if (!env.deferredRays)
         return env.scene->transmission(from, to, env.settings.ignoreNear, env.rayMask, env.clearOfSolid);
-    std::optional<ShadowRay> ray = TraceScene::segmentRay(from, to, env.settings.ignoreNear);
-    // Too short for an occluder to count; structural solid still blocks it (the scene tests the
-    // other rays for solid itself, after Embree, so that blocked rays skip the tree walk).
-    if (!ray) return !env.clearOfSolid && env.scene->crossesSolid(from, to) ? Vec3{} : Vec3{1, 1, 1};
-    ray->mask = env.rayMask;
-    ray->clearOfSolid = env.clearOfSolid;
-    env.deferredRays->push_back(*ray);
-    return {1, 1, 1};
+    const Vec3 d = to - from;
+    const float dist = length(d);
+    const DeferredRay ray = deferShadowRay(env, from, to, dist > 0 ? d / dist : Vec3{}, dist);
+    return ray == DeferredRay::Blocked ? Vec3{} : Vec3{1, 1, 1};
 }
 
 Vec3 skyOcclusion(const LightingEnv& env, const Light& sun, Vec3 from) {
@@ -395,8 +407,6 @@ template <bool area>
 void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope,
                       std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
                       std::span<Vec3> out, Vec3* dirs, std::vector<size_t>& traced) {
-    std::vector<ShadowRay>& rays = *env.deferredRays;
-    const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
     // The PVS verdict of the last cluster asked: runs of samples share one.
     int lastCluster = -2;
     bool lastCulled = false;
@@ -416,15 +426,10 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
         if (add <= 0) continue;
         const Vec3 color = light.color * add;
         if (color == Vec3{}) continue;
-        // occlusion()'s deferred ray from p to the target (segmentRay: the same vector, length and
-        // direction as above), or at once the structural solid test of a segment too short for one.
-        const float tfar = dist - std::min(0.01f, dist * 0.5f);
-        if (dist <= 0 || tfar <= env.settings.ignoreNear) {
-            if (!env.clearOfSolid && env.scene->crossesSolid(p, target)) continue;
-        } else {
-            rays.push_back(ShadowRay{p, dir, firstDepth, tfar, false, -1, env.rayMask, env.clearOfSolid});
-            traced.push_back(i);
-        }
+        // occlusion()'s ray, from the vector, length and direction the contribution already has.
+        const DeferredRay ray = deferShadowRay(env, p, target, dir, dist);
+        if (ray == DeferredRay::Blocked) continue;
+        if (ray == DeferredRay::Queued) traced.push_back(i);
         out[i] = color;
         if (dirs) dirs[i] = dir;
     }
@@ -452,8 +457,6 @@ template <bool area>
 void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envelope, std::span<const Vec3> origins,
                          std::span<const int> clusters, std::span<const uint32_t> which,
                          std::span<std::optional<LightContribution>> out, std::span<int32_t> rayOf) {
-    std::vector<ShadowRay>& rays = *env.deferredRays;
-    const float firstDepth = TraceScene::firstTestedDepth(env.settings.ignoreNear);
     const bool fast = light.fast || env.settings.forceFast;
     int lastCluster = -2;
     bool lastCulled = false;
@@ -474,13 +477,10 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
         if (add <= 0 || (fast && add <= light.falloffTolerance)) continue;
         const Vec3 color = light.color * add;
         if (color == Vec3{}) continue;
-        const float tfar = dist - std::min(0.01f, dist * 0.5f);
-        if (dist <= 0 || tfar <= env.settings.ignoreNear) {
-            if (!env.clearOfSolid && env.scene->crossesSolid(origin, light.origin)) continue;
-        } else {
-            rayOf[p] = int32_t(rays.size());
-            rays.push_back(ShadowRay{origin, dir, firstDepth, tfar, false, -1, env.rayMask, env.clearOfSolid});
-        }
+        const int32_t next = int32_t(env.deferredRays->size());
+        const DeferredRay ray = deferShadowRay(env, origin, light.origin, dir, dist);
+        if (ray == DeferredRay::Blocked) continue;
+        if (ray == DeferredRay::Queued) rayOf[p] = next;
         out[p] = LightContribution{color, dir, light.style};
     }
 }

@@ -134,10 +134,16 @@ public:
         const Vec3 d = to - from;
         const float dist = length(d);
         if (dist <= 0) return std::nullopt;
+        return segmentRayAlong(from, d / dist, dist, ignoreNear);
+    }
+    // segmentRay for a caller that already has the segment's length and unit direction
+    // (length(to - from) and (to - from) / length, as segmentRay computes them).
+    static std::optional<ShadowRay> segmentRayAlong(Vec3 from, Vec3 direction, float dist, float ignoreNear = 0) {
+        if (dist <= 0) return std::nullopt;
         // Stop just short of the end point so that the receiving/emitting surface itself never blocks.
         const float tfar = dist - std::min(0.01f, dist * 0.5f);
         if (tfar <= ignoreNear) return std::nullopt;
-        return ShadowRay{from, d / dist, firstTestedDepth(ignoreNear), tfar, false, -1, kAllShadowGroups};
+        return ShadowRay{from, direction, firstTestedDepth(ignoreNear), tfar, false, -1, kAllShadowGroups};
     }
     // The ray skyTransmission() traces.
     static ShadowRay skyRay(Vec3 from, Vec3 direction, int skyIndex, float ignoreNear = 0);
