@@ -279,6 +279,63 @@ TEST(LightPipeline, ShadowedVertexSearchesForALitPosition) {
     EXPECT_GT(v.color[0], 0);
 }
 
+// A vertex-lit soup lying on the floor: a grid of `columns` x `rows` vertexes from `corner`, `step`
+// apart, facing up.
+void addSoupGrid(bsp::Bsp& b, Vec3 corner, float step, int columns, int rows) {
+    bsp::Surface s{};
+    s.shaderNum = 0;
+    s.fogNum = -1;
+    s.surfaceType = bsp::MST_TRIANGLE_SOUP;
+    s.firstVert = static_cast<int32_t>(b.drawVerts.size());
+    s.numVerts = columns * rows;
+    s.firstIndex = static_cast<int32_t>(b.drawIndexes.size());
+    s.lightmapNum = -1;
+    for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < columns; ++x) {
+            bsp::DrawVert v{};
+            (corner + Vec3{float(x) * step, float(y) * step, 0}).toArray(v.xyz);
+            Vec3{0, 0, 1}.toArray(v.normal);
+            b.drawVerts.push_back(v);
+        }
+    for (int y = 0; y + 1 < rows; ++y)
+        for (int x = 0; x + 1 < columns; ++x) {
+            const int32_t a = y * columns + x, c = a + columns;
+            for (int32_t idx : {a, c + 1, a + 1, a, c, c + 1}) b.drawIndexes.push_back(idx);
+        }
+    s.numIndexes = static_cast<int32_t>(b.drawIndexes.size()) - s.firstIndex;
+    b.surfaces.push_back(s);
+    b.models[0].numSurfaces = static_cast<int32_t>(b.surfaces.size());
+}
+
+TEST(LightPipeline, EveryVertexOfALargeSoupTakesItsOwnLight) {
+    // 50 vertexes beside the table's shadow, traced in blocks of several vertexes at once: each one
+    // still takes the inverse-square light at its own position, and a second light under the
+    // one-sided floor adds nothing to any of them. The thread count changes nothing.
+    bsp::Bsp room = makeRoom();
+    addSoupGrid(room, {100, 4, 0}, 6, 5, 10);
+    std::vector<bsp::Entity> ents = bsp::parseEntities(room.entities, "room");
+    ents.push_back({});
+    ents.back().pairs = {{"classname", "light"}, {"origin", "110 60 -40"}, {"light", "300"}};
+    room.entities = bsp::unparseEntities(ents);
+    const std::filesystem::path dir = test::tempDir();
+    const auto one = writeRoom(dir / "one", room);
+    const auto two = writeRoom(dir / "two", room);
+    ASSERT_EQ(runStage(one, 1), 0);
+    ASSERT_EQ(runStage(two, 2), 0);
+    EXPECT_EQ(readFileBytes(one), readFileBytes(two));
+    const bsp::Bsp lit = bsp::readBsp(one);
+    const bsp::Surface& soup = lit.surfaces.back();
+    ASSERT_EQ(soup.numVerts, 50);
+    for (int i = 0; i < soup.numVerts; ++i) {
+        const bsp::DrawVert& v = lit.drawVerts[static_cast<size_t>(soup.firstVert + i)];
+        const Vec3 toLight = Vec3{64, 64, 100} - Vec3::fromArray(v.xyz);
+        const float d = length(toLight);
+        const Rgb8 expected = colorToBytes(Vec3::splat(2250000.0f / (d * d) * (toLight.z / d)), 1, ColorOptions{});
+        EXPECT_EQ(v.color[0], expected[0]) << "vertex " << i;
+        EXPECT_EQ(v.color[2], expected[2]) << "vertex " << i;
+    }
+}
+
 TEST(LightPipeline, LuxelsNextToAPlanarSurfaceAreLitWhereTheyLie) {
     // A 100 x 100 floor maps luxels 0..6 (s 0.5..6.75); q3map2 also maps the ring of luxels around
     // them (column 7) at their own grid point, one unit up, instead of copying their neighbours.

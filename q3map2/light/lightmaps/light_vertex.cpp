@@ -23,15 +23,30 @@ constexpr float kVertexNudge = 4.0f;       // VERTEX_NUDGE: the step of the sear
 // Steps of the search along each axis, in q3map2's order (its formula yields 0, 0, 1, -1, 2; the
 // repeated 0 would only retry the same point).
 constexpr int kNudgeSteps[4] = {0, 1, -1, 2};
+// How far from its vertex the search may go on each axis (a box that holds every position it tries).
+constexpr float kSearchReach = 2 * kVertexNudge;
 
 // Whether any channel is above the ambient light (q3map2 keeps searching until a vertex is).
 bool brighterThan(Vec3 c, Vec3 ambient) { return c.x > ambient.x || c.y > ambient.y || c.z > ambient.z; }
+
+// Whether a light other than a sun lies behind a one-sided vertex's plane from every position its
+// search may try (lightToSample then gives nothing at any of them): by more than the search's reach
+// along the normal and a margin for the roundings of the dot products.
+bool behindEverywhere(const Light& light, Vec3 xyz, Vec3 normal) {
+    if (light.type == LightType::Sun) return false;
+    const float reach = kSearchReach * (std::fabs(normal.x) + std::fabs(normal.y) + std::fabs(normal.z));
+    const float scale = std::max({std::fabs(light.origin.x), std::fabs(light.origin.y), std::fabs(light.origin.z),
+                                  std::fabs(xyz.x), std::fabs(xyz.y), std::fabs(xyz.z)});
+    const float margin = 0.05f + 1e-5f * scale;
+    return dot(light.origin, normal) - dot(xyz, normal) + reach < -margin;
+}
 
 struct VertexTracer {
     const LightContext& ctx;
     const LightingEnv& env;
     std::span<const int> clusters;  // the surface's clusters: a sample point must see one of them
     std::span<const Light* const> lights;  // the lights whose envelope reaches the surface's vertexes
+    std::span<const float> envelopes;      // their lightEnvelope, in the same order
     Vec3 ambient;  // the surface's ambient (surfaceAmbient) in the direct pass; radiosity passes add none
     bool twoSided = false;
     bool forceSunlight = false;
@@ -50,29 +65,85 @@ struct VertexTracer {
         return dirtForSample(xyz, normal, *dirt->scene, dirt->dirt, dirtSeed(xyz), env.settings.ignoreNear, dirt->tree);
     }
 
+    SamplePoint samplePoint(Vec3 origin, Vec3 normal, int cluster) const {
+        return SamplePoint{origin, normal, ctx.tree && !ctx.bsp.nodes.empty() ? cluster : -1, twoSided};
+    }
+
+    // q3map_forceSunlight: suns reach the vertex without occlusion.
+    bool unoccludedSun(const Light& light) const { return forceSunlight && light.type == LightType::Sun; }
+
     Vec3 lightAt(Vec3 origin, Vec3 normal, int cluster, float dirtFactor) const {
-        // q3map_forceSunlight: suns reach the vertex without occlusion.
         LightingEnv unoccluded = env;
         unoccluded.scene = nullptr;
-        const SamplePoint p{origin, normal, ctx.tree && !ctx.bsp.nodes.empty() ? cluster : -1, twoSided};
+        const SamplePoint p = samplePoint(origin, normal, cluster);
         Vec3 color = ambient;
-        for (const Light* light : lights) {
-            const bool open = forceSunlight && light->type == LightType::Sun;
-            std::optional<LightContribution> c = lightToSample(*light, p, open ? unoccluded : env);
+        for (size_t k = 0; k < lights.size(); ++k) {
+            const Light& light = *lights[k];
+            const LightingEnv& lightEnv = unoccludedSun(light) ? unoccluded : env;
+            std::optional<LightContribution> c = lightToSample(light, p, lightEnv, envelopes[k]);
             if (c && c->style == 0) color += c->color;
             if (ctx.options.cheap && color.x >= 255 && color.y >= 255 && color.z >= 255) break;
         }
         return color * dirtFactor;
     }
 
-    // q3map2 IlluminateVertexes: the light at the vertex itself; when that is out of the world or no
-    // brighter than the ambient light, the first position of a 4-unit lattice around it (x, then y,
-    // then z outermost first) that is lit, else the last one out of solid. nullopt: every position
-    // was in solid.
-    std::optional<Vec3> trace(Vec3 xyz, Vec3 normal) const {
-        std::optional<Vec3> color;
-        const float dirtFactor = dirtAt(xyz, normal);
-        if (const int cluster = freeCluster(xyz); cluster >= 0) color = lightAt(xyz, normal, cluster, dirtFactor);
+    // lightAt for every point set in `points` at once (into out[i]): each light's shadow rays wait,
+    // and all of them are traced as one batch; then each point adds its lights up in light order, as
+    // lightAt does. Not with -cheap, whose early stop needs each sum as it grows.
+    void lightAtAll(std::span<const std::optional<SamplePoint>> points, std::span<const float> dirtFactors,
+                    std::span<std::optional<Vec3>> out) const {
+        const size_t n = points.size();
+        std::vector<uint32_t> which;
+        for (size_t i = 0; i < n; ++i)
+            if (points[i]) which.push_back(uint32_t(i));
+        if (which.empty()) return;
+        std::vector<ShadowRay> rays;
+        std::vector<size_t> rayEntry;  // the contribution (light * n + point) each ray darkens
+        LightingEnv deferred = env;
+        deferred.deferredRays = env.scene ? &rays : nullptr;
+        LightingEnv unoccluded = env;
+        unoccluded.scene = nullptr;
+        std::vector<Vec3> contributions(lights.size() * n);
+        std::vector<size_t> traced;
+        for (size_t k = 0; k < lights.size(); ++k) {
+            const Light& light = *lights[k];
+            if (light.style != 0) continue;  // lightAt keeps style 0 alone
+            const std::span<Vec3> row(contributions.data() + k * n, n);
+            if (!unoccludedSun(light) && samplesBatchable(light, deferred)) {
+                traced.clear();
+                lightToSamples(light, deferred, envelopes[k], points, which, row, nullptr, traced);
+                for (const size_t i : traced) rayEntry.push_back(k * n + i);
+                continue;
+            }
+            for (const uint32_t i : which) {
+                const size_t before = rays.size();
+                std::optional<LightContribution> c =
+                    lightToSample(light, *points[i], unoccludedSun(light) ? unoccluded : deferred, envelopes[k]);
+                if (!c) {
+                    rays.resize(before);
+                    continue;
+                }
+                row[i] = c->color;
+                if (rays.size() > before) rayEntry.push_back(k * n + i);
+            }
+        }
+        if (!rays.empty()) {
+            std::vector<Vec3> transmission(rays.size());
+            env.scene->traceBatch(rays, transmission);
+            for (size_t r = 0; r < rays.size(); ++r) contributions[rayEntry[r]] *= transmission[r];
+        }
+        for (const uint32_t i : which) {
+            Vec3 color = ambient;
+            for (size_t k = 0; k < lights.size(); ++k) color += contributions[k * n + i];
+            out[i] = color * dirtFactors[i];
+        }
+    }
+
+    // q3map2 IlluminateVertexes, once the light at the vertex itself is known (`color`, nullopt when
+    // the vertex is out of the world): when that is missing or no brighter than the ambient light,
+    // the first position of a 4-unit lattice around it (x, then y, then z outermost first) that is
+    // lit, else the last one out of solid. nullopt: every position was in solid.
+    std::optional<Vec3> search(Vec3 xyz, Vec3 normal, float dirtFactor, std::optional<Vec3> color) const {
         if (color && brighterThan(*color, ambient)) return color;
         for (int x : kNudgeSteps)
             for (int y : kNudgeSteps)
@@ -126,41 +197,96 @@ void lightVertexes(LightContext& ctx, Log& log) {
             Bounds reach;
             for (int v = 0; v < s.numVerts; ++v)
                 reach.add(Vec3::fromArray(bsp.drawVerts[static_cast<size_t>(s.firstVert + v)].xyz) + offset);
-            reach.mins -= Vec3::splat(2 * kVertexNudge);
-            reach.maxs += Vec3::splat(2 * kVertexNudge);
+            reach.mins -= Vec3::splat(kSearchReach);
+            reach.maxs += Vec3::splat(kSearchReach);
             const bool dirty = passes && !passes->noDirty[static_cast<size_t>(s.shaderNum)];
             // q3map2 relights vertexes after the direct pass and after each bounce, and adds the
             // passes up: each pass searches for its own lit position (a vertex the direct light
             // reaches only from a nudged point still takes the bounce where it stands).
             std::vector<Vec3> lit(size_t(std::max(0, s.numVerts)));
-            auto addPass = [&](std::span<const Light> passLights, const LightReach& passReach, Vec3 ambient) {
+            auto addPass = [&](std::span<const Light> passLights, std::span<const float> passEnvelopes,
+                               const LightReach& passReach, Vec3 ambient) {
                 // Lights whose envelope misses every position the search may try are skipped.
                 std::vector<uint32_t> indices;
                 passReach.reaching(reach, indices);
                 std::vector<const Light*> reaching;
-                for (const uint32_t k : indices) reaching.push_back(&passLights[k]);
-                const VertexTracer tracer{ctx,     surfaceEnv,      clusters,           reaching,
-                                          ambient, shader.twoSided, shader.forceSunlight, dirty ? passes : nullptr};
+                std::vector<float> reachingEnvelopes;
+                for (const uint32_t k : indices) {
+                    reaching.push_back(&passLights[k]);
+                    reachingEnvelopes.push_back(passEnvelopes[k]);
+                }
+                const VertexTracer tracer{ctx,         surfaceEnv,      clusters,
+                                          reaching,    reachingEnvelopes, ambient,
+                                          shader.twoSided, shader.forceSunlight, dirty ? passes : nullptr};
                 // Traced vertexes first; those whose every position was in solid take the mean of
                 // the lit ones (the pass's ambient light when none is).
                 std::vector<std::optional<Vec3>> traced(lit.size());
-                auto traceRange = [&](const tbb::blocked_range<int>& vertexes) {
-                    for (int v = vertexes.begin(); v != vertexes.end(); ++v) {
-                        const size_t vi = static_cast<size_t>(s.firstVert + v);
+                // Blocks of kVertexBlock vertexes: the light at each vertex itself for a whole block
+                // at once (its shadow rays traced together), then each vertex's search for a lit
+                // position where that one is not. The blocks are fixed, whatever the threads.
+                constexpr int kVertexBlock = 32;
+                auto traceBlock = [&](int block) {
+                    const int first = block * kVertexBlock, end = std::min(s.numVerts, first + kVertexBlock);
+                    const size_t count = size_t(std::max(0, end - first));
+                    std::vector<Vec3> xyz(count), normals(count);
+                    std::vector<float> dirtFactors(count, 1.0f);
+                    std::vector<std::optional<SamplePoint>> points(count);
+                    std::vector<std::optional<Vec3>> colors(count);
+                    std::vector<uint8_t> traces(count, 0);
+                    for (size_t j = 0; j < count; ++j) {
+                        const size_t vi = static_cast<size_t>(s.firstVert + first) + j;
                         if (ctx.vertexFromLightmap[vi]) continue;
+                        traces[j] = 1;
                         const bsp::DrawVert& dv = bsp.drawVerts[vi];
-                        const Vec3 normal = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
-                                                                                    : Vec3::fromArray(dv.normal));
-                        traced[size_t(v)] = tracer.trace(Vec3::fromArray(dv.xyz) + offset, normal);
+                        normals[j] = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
+                                                                              : Vec3::fromArray(dv.normal));
+                        xyz[j] = Vec3::fromArray(dv.xyz) + offset;
+                        dirtFactors[j] = tracer.dirtAt(xyz[j], normals[j]);
+                        if (const int cluster = tracer.freeCluster(xyz[j]); cluster >= 0)
+                            points[j] = tracer.samplePoint(xyz[j], normals[j], cluster);
+                    }
+                    if (o.cheap) {
+                        for (size_t j = 0; j < count; ++j)
+                            if (points[j])
+                                colors[j] = tracer.lightAt(xyz[j], normals[j], points[j]->cluster, dirtFactors[j]);
+                    } else {
+                        tracer.lightAtAll(points, dirtFactors, colors);
+                    }
+                    // A vertex that searches asks only the lights that reach the positions it may
+                    // try (the surface's list holds every light that reaches any of its vertexes;
+                    // the others add nothing there, and the rest keep their order).
+                    std::vector<uint32_t> nearIndices;
+                    std::vector<const Light*> nearLights;
+                    std::vector<float> nearEnvelopes;
+                    for (size_t j = 0; j < count; ++j) {
+                        if (!traces[j]) continue;
+                        if (colors[j] && brighterThan(*colors[j], ambient)) {
+                            traced[size_t(first) + j] = colors[j];
+                            continue;
+                        }
+                        const Vec3 reachBox = Vec3::splat(kSearchReach);
+                        passReach.reaching(Bounds{xyz[j] - reachBox, xyz[j] + reachBox}, nearIndices);
+                        nearLights.clear();
+                        nearEnvelopes.clear();
+                        for (const uint32_t k : nearIndices) {
+                            const bool behind = !shader.twoSided && behindEverywhere(passLights[k], xyz[j], normals[j]);
+                            if (behind) continue;
+                            nearLights.push_back(&passLights[k]);
+                            nearEnvelopes.push_back(passEnvelopes[k]);
+                        }
+                        VertexTracer near = tracer;
+                        near.lights = nearLights;
+                        near.envelopes = nearEnvelopes;
+                        traced[size_t(first) + j] = near.search(xyz[j], normals[j], dirtFactors[j], colors[j]);
                     }
                 };
                 // A surface of many vertexes (a large soup or terrain) would otherwise keep one core
-                // busy after the others have finished: its vertexes are traced in parallel too.
-                constexpr int kVertexGrain = 4;
-                if (s.numVerts > 2 * kVertexGrain)
-                    tbb::parallel_for(tbb::blocked_range<int>(0, s.numVerts, kVertexGrain), traceRange);
-                else
-                    traceRange(tbb::blocked_range<int>(0, std::max(0, s.numVerts)));
+                // busy after the others have finished: its blocks are traced in parallel too.
+                const int blocks = (std::max(0, s.numVerts) + kVertexBlock - 1) / kVertexBlock;
+                if (blocks > 1)
+                    tbb::parallel_for(0, blocks, traceBlock);
+                else if (blocks == 1)
+                    traceBlock(0);
                 Vec3 litSum;
                 int litCount = 0;
                 for (int v = 0; v < s.numVerts; ++v) {
@@ -176,9 +302,9 @@ void lightVertexes(LightContext& ctx, Log& log) {
             bool traces = false;
             for (int v = 0; v < s.numVerts && !traces; ++v) traces = !ctx.vertexFromLightmap[size_t(s.firstVert + v)];
             if (traces) {
-                addPass(ctx.lights, reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
+                addPass(ctx.lights, envelopes[0], reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
                 for (size_t b = 0; b < ctx.bounceLights.size(); ++b)
-                    addPass(ctx.bounceLights[b], reaches[b + 1], Vec3{});
+                    addPass(ctx.bounceLights[b], envelopes[b + 1], reaches[b + 1], Vec3{});
             }
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
