@@ -41,6 +41,28 @@ bool behindEverywhere(const Light& light, Vec3 xyz, Vec3 normal) {
     return dot(light.origin, normal) - dot(xyz, normal) + reach < -margin;
 }
 
+// One pass's lights (the direct lights, or one bounce's emitters), their lightEnvelope each, and the
+// index of which reach a box.
+struct PassLights {
+    std::span<const Light> lights;
+    std::span<const float> envelopes;
+    const LightReach& reach;
+
+    // The lights that reach `box`, in light order, with their envelopes, but those `skip` rejects.
+    template <typename Skip>
+    void select(const Bounds& box, Skip&& skip, std::vector<uint32_t>& indices, std::vector<const Light*>& out,
+                std::vector<float>& outEnvelopes) const {
+        reach.reaching(box, indices);
+        out.clear();
+        outEnvelopes.clear();
+        for (const uint32_t k : indices) {
+            if (skip(lights[k])) continue;
+            out.push_back(&lights[k]);
+            outEnvelopes.push_back(envelopes[k]);
+        }
+    }
+};
+
 struct VertexTracer {
     const LightContext& ctx;
     const LightingEnv& env;
@@ -156,6 +178,58 @@ struct VertexTracer {
                 }
         return color;
     }
+
+    // Vertexes [first, first + count) of `surface` (moved by `offset`) into traced[v - first] (those
+    // that take their colour from a lightmap are left alone): the light at each vertex itself for
+    // the whole block at once (its shadow rays traced together), then the search of each vertex that
+    // is not lit there. A searching vertex asks only the lights of `pass` that reach the positions it
+    // may try and, on a one-sided surface, are not behind it from all of them: the tracer's own list
+    // holds every light that reaches any vertex of the surface, the others add nothing there, and
+    // the rest keep their order.
+    void traceBlock(const bsp::Surface& surface, Vec3 offset, int first, size_t count, const PassLights& pass,
+                    std::span<std::optional<Vec3>> traced) const {
+        std::vector<Vec3> xyz(count), normals(count);
+        std::vector<float> dirtFactors(count, 1.0f);
+        std::vector<std::optional<SamplePoint>> points(count);
+        std::vector<std::optional<Vec3>> colors(count);
+        std::vector<uint8_t> traces(count, 0);
+        for (size_t j = 0; j < count; ++j) {
+            const size_t vi = static_cast<size_t>(surface.firstVert + first) + j;
+            if (ctx.vertexFromLightmap[vi]) continue;
+            traces[j] = 1;
+            const bsp::DrawVert& dv = ctx.bsp.drawVerts[vi];
+            normals[j] = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi] : Vec3::fromArray(dv.normal));
+            xyz[j] = Vec3::fromArray(dv.xyz) + offset;
+            dirtFactors[j] = dirtAt(xyz[j], normals[j]);
+            if (const int cluster = freeCluster(xyz[j]); cluster >= 0)
+                points[j] = samplePoint(xyz[j], normals[j], cluster);
+        }
+        if (ctx.options.cheap) {
+            for (size_t j = 0; j < count; ++j)
+                if (points[j]) colors[j] = lightAt(xyz[j], normals[j], points[j]->cluster, dirtFactors[j]);
+        } else {
+            lightAtAll(points, dirtFactors, colors);
+        }
+        std::vector<uint32_t> nearIndices;
+        std::vector<const Light*> nearLights;
+        std::vector<float> nearEnvelopes;
+        for (size_t j = 0; j < count; ++j) {
+            if (!traces[j]) continue;
+            if (colors[j] && brighterThan(*colors[j], ambient)) {
+                traced[j] = colors[j];
+                continue;
+            }
+            const Vec3 reachBox = Vec3::splat(kSearchReach);
+            const auto behind = [&](const Light& light) {
+                return !twoSided && behindEverywhere(light, xyz[j], normals[j]);
+            };
+            pass.select(Bounds{xyz[j] - reachBox, xyz[j] + reachBox}, behind, nearIndices, nearLights, nearEnvelopes);
+            VertexTracer near = *this;
+            near.lights = nearLights;
+            near.envelopes = nearEnvelopes;
+            traced[j] = near.search(xyz[j], normals[j], dirtFactors[j], colors[j]);
+        }
+    }
 };
 
 }  // namespace
@@ -204,84 +278,27 @@ void lightVertexes(LightContext& ctx, Log& log) {
             // passes up: each pass searches for its own lit position (a vertex the direct light
             // reaches only from a nudged point still takes the bounce where it stands).
             std::vector<Vec3> lit(size_t(std::max(0, s.numVerts)));
-            auto addPass = [&](std::span<const Light> passLights, std::span<const float> passEnvelopes,
-                               const LightReach& passReach, Vec3 ambient) {
+            auto addPass = [&](const PassLights& pass, Vec3 ambient) {
                 // Lights whose envelope misses every position the search may try are skipped.
                 std::vector<uint32_t> indices;
-                passReach.reaching(reach, indices);
                 std::vector<const Light*> reaching;
                 std::vector<float> reachingEnvelopes;
-                for (const uint32_t k : indices) {
-                    reaching.push_back(&passLights[k]);
-                    reachingEnvelopes.push_back(passEnvelopes[k]);
-                }
+                pass.select(reach, [](const Light&) { return false; }, indices, reaching, reachingEnvelopes);
                 const VertexTracer tracer{ctx,         surfaceEnv,      clusters,
                                           reaching,    reachingEnvelopes, ambient,
                                           shader.twoSided, shader.forceSunlight, dirty ? passes : nullptr};
                 // Traced vertexes first; those whose every position was in solid take the mean of
-                // the lit ones (the pass's ambient light when none is).
+                // the lit ones (the pass's ambient light when none is). Blocks of kVertexBlock
+                // vertexes, fixed whatever the threads; a surface of many vertexes (a large soup or
+                // terrain) would otherwise keep one core busy after the others have finished, so
+                // its blocks are traced in parallel too.
                 std::vector<std::optional<Vec3>> traced(lit.size());
-                // Blocks of kVertexBlock vertexes: the light at each vertex itself for a whole block
-                // at once (its shadow rays traced together), then each vertex's search for a lit
-                // position where that one is not. The blocks are fixed, whatever the threads.
                 constexpr int kVertexBlock = 32;
                 auto traceBlock = [&](int block) {
-                    const int first = block * kVertexBlock, end = std::min(s.numVerts, first + kVertexBlock);
-                    const size_t count = size_t(std::max(0, end - first));
-                    std::vector<Vec3> xyz(count), normals(count);
-                    std::vector<float> dirtFactors(count, 1.0f);
-                    std::vector<std::optional<SamplePoint>> points(count);
-                    std::vector<std::optional<Vec3>> colors(count);
-                    std::vector<uint8_t> traces(count, 0);
-                    for (size_t j = 0; j < count; ++j) {
-                        const size_t vi = static_cast<size_t>(s.firstVert + first) + j;
-                        if (ctx.vertexFromLightmap[vi]) continue;
-                        traces[j] = 1;
-                        const bsp::DrawVert& dv = bsp.drawVerts[vi];
-                        normals[j] = normalize(vi < ctx.shadedNormals.size() ? ctx.shadedNormals[vi]
-                                                                              : Vec3::fromArray(dv.normal));
-                        xyz[j] = Vec3::fromArray(dv.xyz) + offset;
-                        dirtFactors[j] = tracer.dirtAt(xyz[j], normals[j]);
-                        if (const int cluster = tracer.freeCluster(xyz[j]); cluster >= 0)
-                            points[j] = tracer.samplePoint(xyz[j], normals[j], cluster);
-                    }
-                    if (o.cheap) {
-                        for (size_t j = 0; j < count; ++j)
-                            if (points[j])
-                                colors[j] = tracer.lightAt(xyz[j], normals[j], points[j]->cluster, dirtFactors[j]);
-                    } else {
-                        tracer.lightAtAll(points, dirtFactors, colors);
-                    }
-                    // A vertex that searches asks only the lights that reach the positions it may
-                    // try (the surface's list holds every light that reaches any of its vertexes;
-                    // the others add nothing there, and the rest keep their order).
-                    std::vector<uint32_t> nearIndices;
-                    std::vector<const Light*> nearLights;
-                    std::vector<float> nearEnvelopes;
-                    for (size_t j = 0; j < count; ++j) {
-                        if (!traces[j]) continue;
-                        if (colors[j] && brighterThan(*colors[j], ambient)) {
-                            traced[size_t(first) + j] = colors[j];
-                            continue;
-                        }
-                        const Vec3 reachBox = Vec3::splat(kSearchReach);
-                        passReach.reaching(Bounds{xyz[j] - reachBox, xyz[j] + reachBox}, nearIndices);
-                        nearLights.clear();
-                        nearEnvelopes.clear();
-                        for (const uint32_t k : nearIndices) {
-                            const bool behind = !shader.twoSided && behindEverywhere(passLights[k], xyz[j], normals[j]);
-                            if (behind) continue;
-                            nearLights.push_back(&passLights[k]);
-                            nearEnvelopes.push_back(passEnvelopes[k]);
-                        }
-                        VertexTracer near = tracer;
-                        near.lights = nearLights;
-                        near.envelopes = nearEnvelopes;
-                        traced[size_t(first) + j] = near.search(xyz[j], normals[j], dirtFactors[j], colors[j]);
-                    }
+                    const int first = block * kVertexBlock;
+                    const size_t count = size_t(std::min(s.numVerts - first, kVertexBlock));
+                    tracer.traceBlock(s, offset, first, count, pass, std::span(traced).subspan(size_t(first), count));
                 };
-                // A surface of many vertexes (a large soup or terrain) would otherwise keep one core
-                // busy after the others have finished: its blocks are traced in parallel too.
                 const int blocks = (std::max(0, s.numVerts) + kVertexBlock - 1) / kVertexBlock;
                 if (blocks > 1)
                     tbb::parallel_for(0, blocks, traceBlock);
@@ -302,9 +319,9 @@ void lightVertexes(LightContext& ctx, Log& log) {
             bool traces = false;
             for (int v = 0; v < s.numVerts && !traces; ++v) traces = !ctx.vertexFromLightmap[size_t(s.firstVert + v)];
             if (traces) {
-                addPass(ctx.lights, envelopes[0], reaches[0], surfaceAmbient(ctx, static_cast<int>(i)));
+                addPass(PassLights{ctx.lights, envelopes[0], reaches[0]}, surfaceAmbient(ctx, static_cast<int>(i)));
                 for (size_t b = 0; b < ctx.bounceLights.size(); ++b)
-                    addPass(ctx.bounceLights[b], envelopes[b + 1], reaches[b + 1], Vec3{});
+                    addPass(PassLights{ctx.bounceLights[b], envelopes[b + 1], reaches[b + 1]}, Vec3{});
             }
             for (int v = 0; v < s.numVerts; ++v) {
                 const size_t vi = static_cast<size_t>(s.firstVert + v);
