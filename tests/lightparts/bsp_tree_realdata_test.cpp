@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bsp_tree.h"
+#include "solid_shell.h"
 #include "test_data.h"
 
 namespace q3::light {
@@ -107,6 +108,47 @@ TEST(BspTreeRealData, CompactWalksMatchThePlainOnes) {
         }
         EXPECT_GT(solid, 50) << name;
         EXPECT_GT(entries, 1000) << name;  // segments that start open and enter solid on the way
+    }
+}
+
+// On real maps, every segment whose walk enters structural solid meets a cell of the solid shell,
+// and most segments that stay open meet none (so their walks are saved).
+TEST(BspTreeRealData, SolidShellHoldsEveryWalkIntoSolid) {
+    for (const std::string name : {"oa_dm4", "oacmpdm1"}) {
+        const bsp::Bsp b = bsp::readBsp(test::realBsp(name));
+        const BspTree tree(b);
+        const SolidShell shell = solidShellOf(&b.models[0], tree);
+        ASSERT_FALSE(shell.empty()) << name;
+        const bsp::Model& world = b.models[0];
+        std::mt19937 rng(11);
+        auto coord = [&](int axis) {
+            const float t = std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
+            const float v = world.mins[axis] + t * (world.maxs[axis] - world.mins[axis]);
+            return rng() % 3 == 0 ? std::round(v) : v;
+        };
+        int crossing = 0, open = 0, spared = 0;
+        for (int i = 0; i < 1500; ++i) {
+            const Vec3 p{coord(0), coord(1), coord(2)};
+            // Half the segments short, so that many stay in open space.
+            const Vec3 q = i % 2 ? Vec3{coord(0), coord(1), coord(2)}
+                                 : p + Vec3{float(int(rng() % 65) - 32), float(int(rng() % 65) - 32),
+                                            float(int(rng() % 65) - 32)};
+            if (!shell.region.contains(p) || !shell.region.contains(q)) continue;
+            const double org[3] = {p.x, p.y, p.z};
+            const double dir[3] = {double(q.x) - p.x, double(q.y) - p.y, double(q.z) - p.z};
+            bool meets = false;
+            for (size_t c = 0; c < shell.boxes.size() && !meets; ++c) meets = shell.segmentMeetsCell(c, org, dir, 0, 1);
+            if (tree.segmentCrossesSolid(p, q)) {
+                ASSERT_TRUE(meets) << name << " " << i;
+                ++crossing;
+            } else {
+                ++open;
+                spared += !meets;
+            }
+        }
+        EXPECT_GT(crossing, 300) << name;
+        EXPECT_GT(open, 50) << name;
+        EXPECT_GT(spared, open / 2) << name;
     }
 }
 

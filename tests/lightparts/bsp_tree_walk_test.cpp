@@ -9,6 +9,7 @@
 #include <random>
 
 #include "bsp_tree.h"
+#include "solid_shell.h"
 
 namespace q3::light {
 namespace {
@@ -262,6 +263,10 @@ TEST(BspTreeWalk, WalksBegunWhereTheHullPartsMatchWalksFromTheRoot) {
             if (hull.clear) continue;
             ASSERT_TRUE(hull.start.has_value());
             deeper += *hull.start != 0;
+            // A walk begun below the root has less of the tree under it (the generator's depth is 9).
+            if (*hull.start >= 0) {
+                EXPECT_TRUE(hull.height >= 1 && hull.height <= 9);
+            }
             for (int k = 0; k < 24; ++k) {
                 const Vec3 from = k < 8 ? corners[size_t(k)] : lerp(a, aMax, t.uniform(0, 1));
                 const bool viaStart = tree.segmentCrossesSolidFrom(hull, from, b);
@@ -274,6 +279,80 @@ TEST(BspTreeWalk, WalksBegunWhereTheHullPartsMatchWalksFromTheRoot) {
     EXPECT_GT(deeper, 50);
     EXPECT_GT(crossing, 500);
     EXPECT_GT(open, 500);
+}
+
+// Whether the segment meets some cell of the shell (both ends must lie in its region).
+bool meetsShell(const SolidShell& shell, Vec3 from, Vec3 to) {
+    const double org[3] = {from.x, from.y, from.z};
+    const double dir[3] = {double(to.x) - from.x, double(to.y) - from.y, double(to.z) - from.z};
+    for (size_t c = 0; c < shell.boxes.size(); ++c)
+        if (shell.segmentMeetsCell(c, org, dir, 0, 1)) return true;
+    return false;
+}
+
+// The shell's promise: every segment whose walk enters solid meets one of its cells, segments on
+// and near the planes included; and many segments that enter none meet no cell (walks saved).
+TEST(BspTreeWalk, EverySegmentThatEntersSolidMeetsTheSolidShell) {
+    int crossing = 0, spared = 0, open = 0;
+    for (uint32_t seed = 1; seed <= 8; ++seed) {
+        RandomTree t(seed);
+        const BspTree tree(t.b);
+        const SolidShell shell = solidShellOf(&t.b.models[0], tree);
+        ASSERT_FALSE(shell.empty()) << seed;
+        const std::vector<Vec3> points = probePoints(t);
+        for (size_t i = 0; i + 1 < points.size(); ++i) {
+            // Long segments between probe points, short ones across the planes, and segments that
+            // run along a plane within its 0.1 epsilon (walked on whichever side the rule says).
+            Vec3 from = points[i];
+            Vec3 to = i % 3 == 0   ? points[i + 1]
+                      : i % 3 == 1 ? from + Vec3{t.uniform(-3, 3), t.uniform(-3, 3), t.uniform(-3, 3)}
+                                   : points[i + 1];
+            if (i % 3 == 2) {
+                const bsp::Plane& plane = t.b.planes[size_t(t.below(int(t.b.planes.size())))];
+                const float offsets[] = {0.0f, 0.05f, -0.05f, 0.09f, -0.09f, 0.1f, -0.1f};
+                for (Vec3* p : {&from, &to}) {
+                    const double d = double(plane.normal[0]) * p->x + double(plane.normal[1]) * p->y +
+                                     double(plane.normal[2]) * p->z - double(plane.dist);
+                    const double o = offsets[t.below(7)];
+                    for (int k = 0; k < 3; ++k) (*p)[k] = float(double((*p)[k]) - (d - o) * double(plane.normal[k]));
+                }
+            }
+            ASSERT_TRUE(shell.region.contains(from) && shell.region.contains(to));
+            const bool meets = meetsShell(shell, from, to);
+            if (tree.segmentCrossesSolid(from, to)) {
+                ASSERT_TRUE(meets) << seed << " " << i;
+                ++crossing;
+                continue;
+            }
+            ++open;
+            spared += !meets;
+        }
+    }
+    EXPECT_GT(crossing, 2000);
+    EXPECT_GT(spared, open / 4);
+}
+
+TEST(BspTreeWalk, SolidShellCellsHugTheSolidLeaf) {
+    // Root splits at x = 0: front leaf open, back leaf outside every cluster. The one cell is the
+    // back half of the world's padded box, moved 0.1 and its margins past the plane.
+    bsp::Bsp b;
+    b.planes = {{{1, 0, 0}, 0}};
+    b.nodes = {{0, {-1, -2}, {0, 0, 0}, {0, 0, 0}}};
+    b.leafs = {{0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, {-1, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
+    b.models = {{{-100, -100, -100}, {100, 100, 100}, 0, 0, 0, 0}};
+    const BspTree tree(b);
+    const SolidShell shell = solidShellOf(&b.models[0], tree);
+    ASSERT_EQ(shell.boxes.size(), 1u);
+    EXPECT_GT(shell.boxes[0].maxs.x, 0.1f);
+    EXPECT_LT(shell.boxes[0].maxs.x, 0.2f);
+    EXPECT_LE(shell.boxes[0].mins.x, -164.0f);
+    EXPECT_TRUE(meetsShell(shell, {5, 0, 0}, {0.09f, 3, 0}));    // ends within the room past the plane
+    EXPECT_FALSE(meetsShell(shell, {5, 0, 0}, {0.5f, 30, 10}));  // stays clear
+    EXPECT_TRUE(meetsShell(shell, {-5, 0, 0}, {-5, 1, 0}));      // inside the solid
+    // Nothing stops a walk: no cells, every segment walked.
+    b.leafs[1].cluster = 1;
+    EXPECT_TRUE(solidShellOf(&b.models[0], BspTree(b)).empty());
+    EXPECT_TRUE(solidShellOf(nullptr, tree).empty());
 }
 
 TEST(BspTreeWalk, HullWalkKeepsTheOnPlaneEpsilon) {

@@ -133,6 +133,11 @@ public:
     // (a bounded walk; without the compact walks; a box not finite).
     bool boxInSolid(Vec3 lo, Vec3 hi, float epsilon = 0.0f) const;
 
+    // SolidSegmentTree::stoppingCells of the segment walks' solid (empty without compact walks).
+    std::vector<ConvexCell> solidCells(DVec3 lo, DVec3 hi, double relax) const {
+        return compact_.empty() ? std::vector<ConvexCell>{} : segmentTree_.stoppingCells(lo, hi, relax);
+    }
+
     // Whether the compact walks are in use (the node tree is a proper tree of bounded depth).
     bool usesCompactTree() const { return !compact_.empty(); }
 

@@ -200,6 +200,7 @@ void buildScene(LightContext& ctx) {
     options.skySolidBetweenInHull = [skySolid](const HullVerdict& hull, Vec3 from, Vec3 to) {
         return skySolid->stopsFrom(hull, from, to);
     };
+    options.solidShell = solidShellOf(ctx.bsp.models.empty() ? nullptr : &ctx.bsp.models[0], *tree);
     ctx.scene = std::make_unique<TraceScene>(pieces, options);
 }
 

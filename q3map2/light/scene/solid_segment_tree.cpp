@@ -84,6 +84,11 @@ SolidSegmentTree::SolidSegmentTree(const bsp::Bsp& bsp, std::span<const uint8_t>
         nodes_ = compactCopy(
             bsp, [&](int32_t child) { return child >= 0 && kinds[size_t(child)] == kMixed; },
             [&](int32_t child) { return childKind(child) == kHasSolid ? kSolidSubtree : kOpenSubtree; });
+    // Children follow their parents in the depth-first copy.
+    heights_.assign(nodes_.size(), 1);
+    for (size_t i = nodes_.size(); i-- > 0;)
+        for (const int32_t child : nodes_[i].children)
+            if (child >= 0) heights_[i] = std::max(heights_[i], heights_[size_t(child)] + 1);
 }
 
 int32_t SolidSegmentTree::sharedStart(Vec3 center, float radius) const {
@@ -180,8 +185,9 @@ HullVerdict SolidSegmentTree::hullWalk(std::span<const Vec3> points) const {
     // it sends the hull, unsplit (no split point has been made yet, so the margin is not needed
     // there but harmless), and walks begun at it end where walks from the root do.
     std::optional<int32_t> firstFork;
+    auto unclear = [&](int32_t from) { return HullVerdict{false, from, from >= 0 ? heights_[size_t(from)] : 0}; };
     while (true) {
-        if (node == kSolidSubtree || ++visited > kNodeBudget) return {false, firstFork ? *firstFork : node};
+        if (node == kSolidSubtree || ++visited > kNodeBudget) return unclear(firstFork ? *firstFork : node);
         if (node < 0) {
             if (top == 0) return {true, std::nullopt};
             node = stack[--top];
@@ -225,11 +231,50 @@ HullVerdict SolidSegmentTree::hullWalk(std::span<const Vec3> points) const {
         } else {
             // Both sides; the pending side waits on a stack no deeper than the path.
             if (!firstFork) firstFork = node;
-            if (top == kMaxCompactDepth) return {false, firstFork};
+            if (top == kMaxCompactDepth) return unclear(*firstFork);
             stack[top++] = n.children[1];
             node = n.children[0];
         }
     }
+}
+
+std::vector<ConvexCell> SolidSegmentTree::stoppingCells(DVec3 lo, DVec3 hi, double relax) const {
+    std::vector<ConvexCell> out;
+    if (!usable_ || root_ == kOpenSubtree) return out;
+    const ConvexCell box = ConvexCell::box(lo, hi);
+    if (root_ == kSolidSubtree) {
+        if (!box.empty()) out.push_back(box);
+        return out;
+    }
+    // Depth first, front child first; a cut that leaves the cell whole keeps it as it is.
+    struct Pending {
+        int32_t node;
+        ConvexCell cell;
+    };
+    std::vector<Pending> stack;
+    stack.push_back({root_, box});
+    while (!stack.empty()) {
+        Pending p = std::move(stack.back());
+        stack.pop_back();
+        const CompactNode& n = nodes_[size_t(p.node)];
+        const DVec3 normal{n.normal[0], n.normal[1], n.normal[2]};
+        // Front keeps dot(normal, x) - dist >= -relax, back keeps dot(normal, x) - dist <= relax.
+        const DVec3 keepNormal[2] = {-normal, normal};
+        const double keepDist[2] = {relax - n.dist, n.dist + relax};
+        for (int side = 1; side >= 0; --side) {
+            const int32_t child = n.children[side];
+            if (child == kOpenSubtree) continue;
+            ConvexCell cell = p.cell.inside(keepNormal[side], keepDist[side])
+                                  ? p.cell
+                                  : p.cell.clipped(keepNormal[side], keepDist[side]);
+            if (cell.empty()) continue;
+            if (child == kSolidSubtree)
+                out.push_back(std::move(cell));
+            else
+                stack.push_back({child, std::move(cell)});
+        }
+    }
+    return out;
 }
 
 }  // namespace q3::light

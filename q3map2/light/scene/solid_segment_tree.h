@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bspfile.h"
+#include "convex_cell.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -93,6 +94,9 @@ inline bool withinWalkRange(Vec3 from, Vec3 to) {
 struct HullVerdict {
     bool clear = false;
     std::optional<int32_t> start;
+    // The longest path from `start` (or the root) down to a mark, in nodes: segments walked in a
+    // low subtree meet few nodes.
+    int32_t height = 0;
 };
 
 class SolidSegmentTree {
@@ -121,6 +125,13 @@ public:
     // tree is not usable, or when the answer would take more than a bounded number of nodes. When
     // not clear, where the segments' walks may begin.
     HullVerdict hullWalk(std::span<const Vec3> points) const;
+    // For every stopping subtree, its cell within the box lo..hi grown by `relax`: the part of the
+    // box on its side of each plane above it, every plane moved `relax` away from that side. A
+    // walk's part that reaches the subtree lies on its side of each plane above it but for the
+    // on-plane epsilon (0.1) and the rounding of split points, so with `relax` above both, a
+    // segment inside the box whose walk reaches solid meets one of these cells. Empty when nothing
+    // stops a walk (or the tree is not usable); the whole box when the root does.
+    std::vector<ConvexCell> stoppingCells(DVec3 lo, DVec3 hi, double relax) const;
 
 private:
     // Children that are not copied nodes: the walk knows the answer there.
@@ -128,6 +139,7 @@ private:
 
     bool usable_ = false;
     std::vector<CompactNode> nodes_;  // depth first, front child first; empty: root_ is a mark
+    std::vector<int32_t> heights_;    // per node, HullVerdict::height of a walk begun there
     int32_t root_ = kOpenSubtree;
 };
 

@@ -27,6 +27,7 @@
 
 #include "lights.h"
 #include "solid_segment_tree.h"
+#include "solid_shell.h"
 #include "vec3.h"
 
 namespace q3::light {
@@ -65,6 +66,9 @@ struct TraceSceneOptions {
     // skySolidBetween.
     std::function<HullVerdict(std::span<const Vec3> points)> skyHullClear;
     std::function<bool(const HullVerdict& hull, Vec3 from, Vec3 to)> skySolidBetweenInHull;
+    // Cells around solidBetween's solid (solid_shell.h): point-light segments that meet none are
+    // not walked. Empty: every segment is.
+    SolidShell solidShell;
 };
 
 // Every shadow group: the ray mask of rays that any caster may block.
@@ -191,6 +195,7 @@ private:
     std::function<HullVerdict(std::span<const Vec3>)> skyHullClear_;
     std::function<bool(const HullVerdict&, Vec3, Vec3)> solidBetweenInHull_;
     std::function<bool(const HullVerdict&, Vec3, Vec3)> skySolidBetweenInHull_;
+    SolidShell shell_;
     // Rays counted per worker thread (one cache line each) so that counting never makes the
     // threads fight over one shared counter.
     struct alignas(64) RayCounter {
