@@ -134,10 +134,7 @@ TEST(BspTreeRealData, SolidShellHoldsEveryWalkIntoSolid) {
                                  : p + Vec3{float(int(rng() % 65) - 32), float(int(rng() % 65) - 32),
                                             float(int(rng() % 65) - 32)};
             if (!shell.region.contains(p) || !shell.region.contains(q)) continue;
-            const double org[3] = {p.x, p.y, p.z};
-            const double dir[3] = {double(q.x) - p.x, double(q.y) - p.y, double(q.z) - p.z};
-            bool meets = false;
-            for (size_t c = 0; c < shell.boxes.size() && !meets; ++c) meets = shell.segmentMeetsCell(c, org, dir, 0, 1);
+            const bool meets = shell.segmentMeetsAnyCell(p, q);
             if (tree.segmentCrossesSolid(p, q)) {
                 ASSERT_TRUE(meets) << name << " " << i;
                 ++crossing;

@@ -281,15 +281,6 @@ TEST(BspTreeWalk, WalksBegunWhereTheHullPartsMatchWalksFromTheRoot) {
     EXPECT_GT(open, 500);
 }
 
-// Whether the segment meets some cell of the shell (both ends must lie in its region).
-bool meetsShell(const SolidShell& shell, Vec3 from, Vec3 to) {
-    const double org[3] = {from.x, from.y, from.z};
-    const double dir[3] = {double(to.x) - from.x, double(to.y) - from.y, double(to.z) - from.z};
-    for (size_t c = 0; c < shell.boxes.size(); ++c)
-        if (shell.segmentMeetsCell(c, org, dir, 0, 1)) return true;
-    return false;
-}
-
 // The shell's promise: every segment whose walk enters solid meets one of its cells, segments on
 // and near the planes included; and many segments that enter none meet no cell (walks saved).
 TEST(BspTreeWalk, EverySegmentThatEntersSolidMeetsTheSolidShell) {
@@ -318,7 +309,7 @@ TEST(BspTreeWalk, EverySegmentThatEntersSolidMeetsTheSolidShell) {
                 }
             }
             ASSERT_TRUE(shell.region.contains(from) && shell.region.contains(to));
-            const bool meets = meetsShell(shell, from, to);
+            const bool meets = shell.segmentMeetsAnyCell(from, to);
             if (tree.segmentCrossesSolid(from, to)) {
                 ASSERT_TRUE(meets) << seed << " " << i;
                 ++crossing;
@@ -346,9 +337,9 @@ TEST(BspTreeWalk, SolidShellCellsHugTheSolidLeaf) {
     EXPECT_GT(shell.boxes[0].maxs.x, 0.1f);
     EXPECT_LT(shell.boxes[0].maxs.x, 0.2f);
     EXPECT_LE(shell.boxes[0].mins.x, -164.0f);
-    EXPECT_TRUE(meetsShell(shell, {5, 0, 0}, {0.09f, 3, 0}));    // ends within the room past the plane
-    EXPECT_FALSE(meetsShell(shell, {5, 0, 0}, {0.5f, 30, 10}));  // stays clear
-    EXPECT_TRUE(meetsShell(shell, {-5, 0, 0}, {-5, 1, 0}));      // inside the solid
+    EXPECT_TRUE(shell.segmentMeetsAnyCell({5, 0, 0}, {0.09f, 3, 0}));    // ends within the room past the plane
+    EXPECT_FALSE(shell.segmentMeetsAnyCell({5, 0, 0}, {0.5f, 30, 10}));  // stays clear
+    EXPECT_TRUE(shell.segmentMeetsAnyCell({-5, 0, 0}, {-5, 1, 0}));      // inside the solid
     // Nothing stops a walk: no cells, every segment walked.
     b.leafs[1].cluster = 1;
     EXPECT_TRUE(solidShellOf(&b.models[0], BspTree(b)).empty());

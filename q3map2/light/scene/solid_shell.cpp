@@ -7,12 +7,11 @@
 
 namespace q3::light {
 
-bool SolidShell::segmentMeetsCell(size_t cell, const double org[3], const double dir[3], double t0,
-                                  double t1) const {
+bool SolidShell::segmentMeetsCell(size_t cell, const DVec3& org, const DVec3& dir, double t0, double t1) const {
     for (uint32_t i = firstPlane[cell]; i < firstPlane[cell + 1]; ++i) {
-        const Plane& p = planes[i];
-        const double along = p.normal[0] * dir[0] + p.normal[1] * dir[1] + p.normal[2] * dir[2];
-        const double room = p.dist - (p.normal[0] * org[0] + p.normal[1] * org[1] + p.normal[2] * org[2]);
+        const ConvexCell::Plane& p = planes[i];
+        const double along = dot(p.normal, dir);
+        const double room = p.dist - dot(p.normal, org);
         if (along > 0)
             t1 = std::min(t1, room / along);
         else if (along < 0)
@@ -22,6 +21,13 @@ bool SolidShell::segmentMeetsCell(size_t cell, const double org[3], const double
         if (t0 > t1) return false;
     }
     return true;
+}
+
+bool SolidShell::segmentMeetsAnyCell(Vec3 from, Vec3 to) const {
+    const DVec3 org(from), dir = DVec3(to) - DVec3(from);
+    for (size_t c = 0; c < boxes.size(); ++c)
+        if (segmentMeetsCell(c, org, dir, 0, 1)) return true;
+    return false;
 }
 
 SolidShell solidShellOf(const bsp::Model* world, const BspTree& tree) {
@@ -52,8 +58,8 @@ SolidShell solidShellOf(const bsp::Model* world, const BspTree& tree) {
         }
         shell.boxes.push_back(b);
         shell.firstPlane.push_back(uint32_t(shell.planes.size()));
-        for (const ConvexCell::Plane& p : c.planes())
-            shell.planes.push_back({{p.normal.x, p.normal.y, p.normal.z}, p.dist});
+        const std::vector<ConvexCell::Plane> cellPlanes = c.planes();
+        shell.planes.insert(shell.planes.end(), cellPlanes.begin(), cellPlanes.end());
     }
     if (shell.boxes.empty()) return shell;
     shell.firstPlane.push_back(uint32_t(shell.planes.size()));

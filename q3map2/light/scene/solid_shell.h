@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "convex_cell.h"
 #include "vec3.h"
 
 namespace q3 {
@@ -20,19 +21,18 @@ class BspTree;
 // rounding of its split points and of the segment's own points): a segment that meets no cell
 // enters no solid. No cells: every segment is walked.
 struct SolidShell {
-    struct Plane {
-        double normal[3];  // a cell keeps dot(normal, x) <= dist
-        double dist;
-    };
     Bounds region;
     std::vector<Bounds> boxes;         // each cell's bounds
     std::vector<uint32_t> firstPlane;  // cell c: planes[firstPlane[c] .. firstPlane[c + 1])
-    std::vector<Plane> planes;
+    std::vector<ConvexCell::Plane> planes;
 
     bool empty() const { return boxes.empty() || firstPlane.size() != boxes.size() + 1; }
     // Whether the points org + t * dir with t0 <= t <= t1 meet the cell (clipped plane by plane,
     // in double).
-    bool segmentMeetsCell(size_t cell, const double org[3], const double dir[3], double t0, double t1) const;
+    bool segmentMeetsCell(size_t cell, const DVec3& org, const DVec3& dir, double t0, double t1) const;
+    // Whether the segment meets some cell, every cell asked in turn (what Embree's search over the
+    // cells answers faster).
+    bool segmentMeetsAnyCell(Vec3 from, Vec3 to) const;
 };
 
 // The shell of `tree`'s walks over the world model's box with a margin (empty without a model,

@@ -151,10 +151,10 @@ void shellCellOccluded(const RTCOccludedFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         RTCRayN* ray = args->ray;
-        const double org[3] = {RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                               RTCRayN_org_z(ray, args->N, i)};
-        const double dir[3] = {RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
-                               RTCRayN_dir_z(ray, args->N, i)};
+        const DVec3 org{RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                        RTCRayN_org_z(ray, args->N, i)};
+        const DVec3 dir{RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+                        RTCRayN_dir_z(ray, args->N, i)};
         float& tfar = RTCRayN_tfar(ray, args->N, i);
         if (shell.segmentMeetsCell(args->primID, org, dir, RTCRayN_tnear(ray, args->N, i), tfar))
             tfar = -std::numeric_limits<float>::infinity();
