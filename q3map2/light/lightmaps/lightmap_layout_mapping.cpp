@@ -1,7 +1,9 @@
 #include "lightmap_layout_mapping.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <optional>
 
 namespace q3::light {
 namespace {
@@ -51,9 +53,30 @@ bool primitivePlane(const RawLightmap& lm, const MapVertex& a, const MapVertex& 
     return lm.axisNum < 0 || normal[lm.axisNum] != 0.0f;
 }
 
+// Whether every vertex of every surface has one normal along an axis. Summing that normal any
+// number of times and normalizing gives it back exactly, so the luxels' normals need no sums, and a
+// split whose points can only fall on luxels already mapped changes nothing.
+bool sharesAxialNormal(std::span<const MappingSurface> surfaces) {
+    std::optional<Vec3> shared;
+    for (const MappingSurface& s : surfaces)
+        for (const MapVertex& v : s.verts) {
+            if (!shared) {
+                const Vec3 n = v.normal;
+                const int zeros = int(n.x == 0.0f) + int(n.y == 0.0f) + int(n.z == 0.0f);
+                if (zeros != 2 || std::fabs(n.x + n.y + n.z) != 1.0f) return false;
+                shared = n;
+            } else if (std::bit_cast<std::array<uint32_t, 3>>(v.normal) !=
+                       std::bit_cast<std::array<uint32_t, 3>>(*shared)) {  // zeros of one sign too
+                return false;
+            }
+        }
+    return shared.has_value();
+}
+
 class LuxelMapper {
 public:
-    explicit LuxelMapper(RawLightmap& lm) : lm_(lm), normalSums_(lm.luxels.size()) {}
+    LuxelMapper(RawLightmap& lm, bool sharedAxialNormal)
+        : lm_(lm), sharedAxialNormal_(sharedAxialNormal), normalSums_(sharedAxialNormal ? 0 : lm.luxels.size()) {}
 
     void mapSurface(const MappingSurface& s) {
         if (s.quadWidth >= 2 && s.quadHeight >= 2 && s.verts.size() == size_t(s.quadWidth) * size_t(s.quadHeight)) {
@@ -69,7 +92,7 @@ public:
     }
 
     void finish() {
-        for (size_t i = 0; i < lm_.luxels.size(); ++i)
+        for (size_t i = 0; i < normalSums_.size(); ++i)
             if (lm_.luxels[i].mapped && dot(normalSums_[i], normalSums_[i]) > 0.0f)
                 lm_.luxels[i].normal = normalize(normalSums_[i]);
     }
@@ -83,7 +106,7 @@ private:
         const int x = std::clamp(int(v.st[0]), 0, sw - 1), y = std::clamp(int(v.st[1]), 0, sh - 1);
         const size_t i = size_t(y) * size_t(sw) + size_t(x);
         Luxel& l = lm_.luxels[i];
-        normalSums_[i] += v.normal;
+        if (!sharedAxialNormal_) normalSums_[i] += v.normal;
         if (l.mapped) return;
         Vec3 origin = v.xyz;
         if (lm_.axisNum >= 0) {
@@ -135,7 +158,7 @@ private:
             const float dist = squaredStDistance(*corners[i], *corners[(i + 1) % 3]);
             if (dist > longestDist) longestDist = dist, longest = int(i);
         }
-        if (longest < 0) return;
+        if (longest < 0 || (sameNormal && sharedAxialNormal_ && coversOnlyMapped(corners))) return;
         const size_t a = size_t(longest), b = (a + 1) % 3;
         const MapVertex mid = midpoint<sameNormal>(*corners[a], *corners[b]);
         mapPoint(mid, n, d);
@@ -145,6 +168,24 @@ private:
         half[a] = corners[a];
         half[b] = &mid;
         splitCornersAs<sameNormal>(half, n, d);
+    }
+
+    // Whether every luxel a point inside the triangle can map to (mapPoint's truncation and clamp
+    // of its box's corners) is mapped already; false without looking when that is more than 3 x 3.
+    bool coversOnlyMapped(const std::array<const MapVertex*, 3>& corners) const {
+        const std::array<float, 2>& s0 = corners[0]->st;
+        const std::array<float, 2>& s1 = corners[1]->st;
+        const std::array<float, 2>& s2 = corners[2]->st;
+        const int sw = lm_.superWidth(), sh = lm_.superHeight();
+        const int x0 = std::clamp(int(std::min({s0[0], s1[0], s2[0]})), 0, sw - 1);
+        const int x1 = std::clamp(int(std::max({s0[0], s1[0], s2[0]})), 0, sw - 1);
+        const int y0 = std::clamp(int(std::min({s0[1], s1[1], s2[1]})), 0, sh - 1);
+        const int y1 = std::clamp(int(std::max({s0[1], s1[1], s2[1]})), 0, sh - 1);
+        if (x1 - x0 > 15 || y1 - y0 > 15) return false;
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                if (!lm_.luxels[size_t(y) * size_t(sw) + size_t(x)].mapped) return false;
+        return true;
     }
 
     // The vertices, then either the whole triangle (second pass) or only its axial edges (first
@@ -219,7 +260,8 @@ private:
     }
 
     RawLightmap& lm_;
-    std::vector<Vec3> normalSums_;
+    bool sharedAxialNormal_;
+    std::vector<Vec3> normalSums_;  // empty with a shared axial normal
 };
 
 }  // namespace
@@ -227,7 +269,7 @@ private:
 void mapSurfacesOntoLuxels(RawLightmap& lm, std::span<const MappingSurface> surfaces) {
     lm.luxels.assign(size_t(lm.superWidth()) * size_t(lm.superHeight()), Luxel{});
     if (lm.luxels.empty()) return;
-    LuxelMapper mapper(lm);
+    LuxelMapper mapper(lm, sharesAxialNormal(surfaces));
     for (const MappingSurface& s : surfaces) mapper.mapSurface(s);
     mapper.finish();
 }
