@@ -316,7 +316,27 @@ TEST(Dirt, SkyFaceInFrontOfSolidDoesNotDarken) {
     const bsp::Bsp b = wallTreeBsp();
     const BspTree tree(b);
     EXPECT_EQ(dirtForSample({16, 256, 1}, {0, 0, 1}, scene, DirtSettings{}, 0, 1.5f, &tree), 1.0f);
+
+    // Luxels from 16 to 400 units away (unmapped luxels between them keep the smoothing out): each
+    // luxel's dirt is the one its sample alone gets. The lightmap asks for sky only within reach of
+    // its blocks; asking too little would let the solid behind the sky darken the near ones.
+    const std::array<float, 5> distances{16, 100, 126, 140, 400};
+    std::vector<std::optional<SamplePoint>> points(2 * distances.size());
+    for (size_t k = 0; k < distances.size(); ++k)
+        points[2 * k] = SamplePoint{{distances[k], 256, 1}, normalize(Vec3{-0.3f, 0.1f, 1})};
+    const std::vector<float> dirt =
+        dirtForLightmap(points, int(points.size()), 1, scene, DirtSettings{}, false, &tree);
+    for (size_t k = 0; k < distances.size(); ++k) {
+        const SamplePoint& p = *points[2 * k];
+        EXPECT_EQ(dirt[2 * k], dirtForSample(p.origin, p.normal, scene, DirtSettings{}, dirtSeed(p.origin),
+                                             kDirtInhibitRadius, &tree))
+            << distances[k];
+    }
+    EXPECT_EQ(dirt[0], 1.0f);  // every ray towards the wall meets sky first
+    HitScene plain(cornerScene(), {});
+    EXPECT_LT(dirtForLightmap(points, int(points.size()), 1, plain, DirtSettings{}, false, &tree)[0], 0.9f);
 }
+
 
 // The corner (floor, wall at x = 0, sky wall at x = 512) under ambient 100, with a 16 x 16
 // vertex-lit tile from `tile` (surface 3).

@@ -147,10 +147,12 @@ void BspTree::segmentSolidEntries(Vec3 from, std::span<const Vec3> directions, f
     std::array<Vec3, kMaxFanRays> ends;
     for (size_t i = 0; i < count; ++i) ends[i] = from + directions[i] * length;
     const int32_t ballStart = segmentTree_.sharedStart(from, radius);
-    std::array<Vec3, kGroup + 1> hull;
+    std::array<Vec3, kGroup + 2> hull;
     hull[0] = from;
-    for (size_t first = 0; first < count; first += kGroup) {
-        const size_t n = std::min(kGroup, count - first);
+    for (size_t first = 0, n = 0; first < count; first += n) {
+        // A last ray alone (dirt's cone has 48 and the normal) joins the group before it: the hull
+        // of one segment costs more than the walk it could spare.
+        n = count - first <= kGroup + 1 ? count - first : kGroup;
         for (size_t i = 0; i < n; ++i) hull[i + 1] = ends[first + i];
         const HullVerdict verdict = segmentTree_.hullWalk(std::span(hull.data(), n + 1));
         const int32_t start = verdict.start.value_or(ballStart);

@@ -97,7 +97,16 @@ HitScene::HitScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOp
         const unsigned id = attachSurface(embree_->device, embree_->scene, s);
         if (skyGeometry_.size() <= id) skyGeometry_.resize(id + 1, 0);
         skyGeometry_[id] = sky ? 1 : 0;
-        if (sky) attachSurface(embree_->device, embree_->skyScene, s);
+        if (sky) {
+            attachSurface(embree_->device, embree_->skyScene, s);
+            // Every corner Embree may use, an index out of range reading vertex 0 as attachSurface has it.
+            for (size_t t = 0; t + 2 < s.triangles.size(); t += 3) {
+                Bounds box;
+                for (size_t k = 0; k < 3; ++k)
+                    if (!s.xyz.empty()) box.add(s.xyz[s.triangles[t + k] < s.xyz.size() ? s.triangles[t + k] : 0]);
+                skyTriangleBoxes_.push_back(box);
+            }
+        }
         if (!embree_->openScene) continue;
         const std::vector<uint32_t>& open = openOf[i];
         if (open.empty()) continue;

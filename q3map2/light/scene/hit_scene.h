@@ -48,11 +48,14 @@ public:
     // whatever lies nearer: a query on the sky surfaces alone, far fewer than the whole world.
     void skyAlongMany(Vec3 from, std::span<const Vec3> directions, float tnear, std::span<const float> tfars,
                       std::span<uint8_t> out) const;
+    // The box of every sky triangle: a ray that comes within no such box meets no sky.
+    std::span<const Bounds> skyTriangleBoxes() const { return skyTriangleBoxes_; }
 
 private:
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
     std::vector<uint8_t> skyGeometry_;      // per Embree geometry id: 1 = sky surface
+    std::vector<Bounds> skyTriangleBoxes_;
     std::vector<uint8_t> openSkyGeometry_;  // the same for the scene of triangles not backed by solid
 };
 
