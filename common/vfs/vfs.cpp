@@ -1,6 +1,8 @@
 // The search path: sources in priority order, and look-ups that walk it.
 #include "vfs.h"
 
+#include <oneapi/tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cctype>
 #include <map>
@@ -137,14 +139,26 @@ struct Vfs::Impl {
             std::string la = lowerCopy(a.filename().string()), lb = lowerCopy(b.filename().string());
             return la != lb ? la > lb : a.filename().string() > b.filename().string();
         });
-        for (const fs::path& pk3 : packages) {
+        // The archives' directories are read side by side (a game's pk3s hold thousands of entries),
+        // then taken in search order with their messages.
+        struct Opened {
+            std::optional<Pk3Archive> archive;
+            std::string error;
+        };
+        std::vector<Opened> opened(packages.size());
+        tbb::parallel_for(size_t(0), packages.size(), [&](size_t i) {
+            if (lowerCopy(packages[i].extension().string()) != ".pk3dir")
+                opened[i].archive = Pk3Archive::open(packages[i], opened[i].error);
+        });
+        for (size_t i = 0; i < packages.size(); ++i) {
+            const fs::path& pk3 = packages[i];
             if (lowerCopy(pk3.extension().string()) == ".pk3dir") {
                 sources.push_back({VfsSource::Kind::Folder, pk3, game});
                 archives.emplace_back();
                 continue;
             }
-            std::string error;
-            auto archive = Pk3Archive::open(pk3, error);
+            const std::string& error = opened[i].error;
+            std::optional<Pk3Archive>& archive = opened[i].archive;
             if (!archive) {
                 log.warning(pk3.string() + ": " + error + "; archive skipped");
                 continue;
