@@ -171,7 +171,7 @@ private:
     }
 
     // Whether every luxel a point inside the triangle can map to (mapPoint's truncation and clamp
-    // of its box's corners) is mapped already; false without looking when that is more than 3 x 3.
+    // of its box's corners) is mapped already; false without looking when that is more than 16 x 16.
     bool coversOnlyMapped(const std::array<const MapVertex*, 3>& corners) const {
         const std::array<float, 2>& s0 = corners[0]->st;
         const std::array<float, 2>& s1 = corners[1]->st;

@@ -44,8 +44,8 @@ SolidBackedTest dirtSolidBacked(const BspTree& tree);
 // (the same seed always gives the same directions); surfaces closer than `ignoreNear` do not count.
 // With `tree`, a ray that enters structural solid is stopped where it enters, even within
 // `ignoreNear` and behind nearer surfaces (q3map2 tests the BSP's solid leaves before surfaces).
-// `skyNear` false says that no sky surface lies within kDirtSkyReach of `origin`
-// (HitScene::skyWithin), so that no ray needs to look for sky before its solid.
+// `skyNear` false says that no sky triangle's box (HitScene::skyTriangleBoxes) lies within the
+// depth plus kDirtSkyReach of `origin`, so that no ray needs to look for sky before its solid.
 float dirtForSample(Vec3 origin, Vec3 normal, const HitScene& scene, const DirtSettings& settings, uint64_t seed,
                     float ignoreNear = kDirtInhibitRadius, const BspTree* tree = nullptr, bool skyNear = true);
 // How far beyond the dirt depth a ray still looks for a sky face in front of the solid it enters.
