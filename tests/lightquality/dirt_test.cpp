@@ -177,6 +177,35 @@ TEST(Dirt, LightmapSmoothsOverMappedNeighbours) {
     EXPECT_NEAR(image.color[0].y, 255 * dirt[0], 1e-3f);
 }
 
+// Black luxels stay black whatever their dirt, so only the luxels next to a lit one are traced; the
+// lit ones come out as if every luxel had been.
+TEST(Dirt, OnlyLuxelsNextToLightAreTraced) {
+    HitScene scene(cornerScene(), {});
+    constexpr int kWidth = 6, kHeight = 3;
+    std::vector<std::optional<SamplePoint>> points(kWidth * kHeight);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            points[size_t(y * kWidth + x)] = SamplePoint{{8.0f + 8.0f * float(x), 256.0f + 8.0f * float(y), 1}, {0, 0, 1}};
+    LuxelImage image(kWidth, kHeight, LuxelState::Mapped);
+    image.color[size_t(1 * kWidth + 1)] = {40, 40, 40};  // the only lit luxel, next to the wall
+
+    const std::vector<uint8_t> wanted = dirtWantedLuxels(image);
+    ASSERT_EQ(wanted.size(), points.size());
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) EXPECT_EQ(wanted[size_t(y * kWidth + x)], x <= 2 ? 1 : 0) << x << "," << y;
+
+    const std::vector<float> all = dirtForLightmap(points, kWidth, kHeight, scene, DirtSettings{}, false);
+    const std::vector<float> some = dirtForLightmap(points, kWidth, kHeight, scene, DirtSettings{}, false, nullptr,
+                                                    wanted);
+    EXPECT_LT(all[size_t(1 * kWidth + 1)], 0.9f);
+    EXPECT_EQ(some[size_t(1 * kWidth + 1)], all[size_t(1 * kWidth + 1)]);
+    EXPECT_EQ(some[size_t(1 * kWidth + 5)], 1.0f);  // untraced: far from the light
+    EXPECT_LT(all[size_t(1 * kWidth + 5)], 1.0f);
+
+    LuxelImage dark(kWidth, kHeight, LuxelState::Mapped);
+    for (const uint8_t w : dirtWantedLuxels(dark)) EXPECT_EQ(w, 0);
+}
+
 // Floor (0..512)^2 with ambient 100; a wall at x = 0 and a sky wall at x = 512.
 bsp::Bsp cornerBsp(const std::string& floorShader) {
     bsp::Bsp b = quality::emptyBsp({floorShader, "textures/test/wall", "textures/test/sky"});

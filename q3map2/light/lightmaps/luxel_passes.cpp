@@ -56,8 +56,10 @@ void applyLuxelPasses(const LuxelPasses& passes, int shaderNum, LuxelImage& imag
                       floodlightForLightmap(points, *passes.scene, *passes.shaderFlood[static_cast<size_t>(shaderNum)]));
     if (passes.dirty) {
         const bool noDirty = known && passes.noDirty[static_cast<size_t>(shaderNum)];
+        // -dirtdebug shows the factor itself, so every luxel needs it.
+        const std::vector<uint8_t> wanted = passes.dirt.debug ? std::vector<uint8_t>{} : dirtWantedLuxels(image);
         applyDirt(image, dirtForLightmap(points, image.width, image.height, *passes.scene, passes.dirt, noDirty,
-                                         passes.tree),
+                                         passes.tree, wanted),
                   passes.dirt.debug);
     }
 }

@@ -166,17 +166,18 @@ void skyBoxesWithin(std::span<const Bounds> skies, const std::vector<uint32_t>* 
 
 std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
                                    const HitScene& scene, const DirtSettings& settings, bool noDirty,
-                                   const BspTree* tree) {
+                                   const BspTree* tree, std::span<const uint8_t> wanted) {
     const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
     std::vector<float> raw(count, 0.0f);
+    auto isWanted = [&](size_t i) { return wanted.empty() || (i < wanted.size() && wanted[i] != 0); };
     // Whether sky lies within reach is asked of the lightmap, then of blocks of its luxels: most
     // blocks have none near (asking each sample as well spares nothing more on oacmpdm5).
     const std::span<const Bounds> skies = scene.skyTriangleBoxes();
     const float skyReach = settings.depth + kDirtSkyReach;
     auto at = [width](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(width) + size_t(x); };
     Bounds lightmapBox;
-    for (const std::optional<SamplePoint>& p : points)
-        if (p) lightmapBox.add(p->origin);
+    for (size_t i = 0; i < points.size(); ++i)
+        if (points[i] && isWanted(i)) lightmapBox.add(points[i]->origin);
     std::vector<uint32_t> lightmapSkies, blockSkies;
     if (!noDirty && !lightmapBox.empty()) skyBoxesWithin(skies, nullptr, lightmapBox, skyReach, lightmapSkies);
     constexpr int kBlock = 8;
@@ -188,14 +189,15 @@ std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>
                 Bounds box;
                 for (int y = by; y < ey; ++y)
                     for (int x = bx; x < ex; ++x)
-                        if (at(x, y) < points.size() && points[at(x, y)]) box.add(points[at(x, y)]->origin);
+                        if (at(x, y) < points.size() && points[at(x, y)] && isWanted(at(x, y)))
+                            box.add(points[at(x, y)]->origin);
                 if (!box.empty()) skyBoxesWithin(skies, &lightmapSkies, box, skyReach, blockSkies);
             }
             for (int y = by; y < ey; ++y)
                 for (int x = bx; x < ex; ++x) {
                     const size_t i = at(x, y);
                     if (i >= points.size() || !points[i]) continue;
-                    if (noDirty) {
+                    if (noDirty || !isWanted(i)) {
                         raw[i] = 1.0f;
                         continue;
                     }
@@ -223,6 +225,22 @@ std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>
             smoothed[i] = sum / samples;
         }
     return smoothed;
+}
+
+std::vector<uint8_t> dirtWantedLuxels(const LuxelImage& image) {
+    const int w = image.width, h = image.height;
+    std::vector<uint8_t> wanted(image.color.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+            if (i >= image.color.size() || image.color[i] == Vec3{}) continue;
+            for (int sy = std::max(0, y - 1); sy <= std::min(h - 1, y + 1); ++sy)
+                for (int sx = std::max(0, x - 1); sx <= std::min(w - 1, x + 1); ++sx) {
+                    const size_t j = static_cast<size_t>(sy) * static_cast<size_t>(w) + static_cast<size_t>(sx);
+                    if (j < wanted.size()) wanted[j] = 1;
+                }
+        }
+    return wanted;
 }
 
 void applyDirt(LuxelImage& image, const std::vector<float>& dirt, bool debug) {

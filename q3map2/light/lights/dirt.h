@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "bsp_tree.h"
@@ -56,10 +57,17 @@ uint64_t dirtSeed(Vec3 origin);
 
 // Dirt of every luxel of a raw lightmap (width x height, row-major `points`; nullopt = unmapped,
 // which gets 0). `noDirty` (q3map_noDirty) gives 1 everywhere. Then each mapped luxel takes the mean
-// of itself and its mapped 3x3 neighbours with dirt > 0, as q3map2's smoothing.
+// of itself and its mapped 3x3 neighbours with dirt > 0, as q3map2's smoothing. With a non-empty
+// `wanted` (one byte per luxel), luxels it leaves unmarked are taken as 1 before smoothing, so only
+// marked luxels whose neighbours are all marked keep their true factor (dirtWantedLuxels marks so
+// that this covers every luxel the factors can change).
 std::vector<float> dirtForLightmap(const std::vector<std::optional<SamplePoint>>& points, int width, int height,
                                    const HitScene& scene, const DirtSettings& settings, bool noDirty,
-                                   const BspTree* tree = nullptr);
+                                   const BspTree* tree = nullptr, std::span<const uint8_t> wanted = {});
+
+// The luxels whose dirt can change `image`: those within one luxel (the smoothing's reach) of a
+// luxel that is not black. Dirt multiplies, so a black luxel stays black whatever its factor.
+std::vector<uint8_t> dirtWantedLuxels(const LuxelImage& image);
 
 // Multiplies every luxel by its dirt (or, with settings.debug, replaces it by dirt * 255 grey).
 void applyDirt(LuxelImage& image, const std::vector<float>& dirt, bool debug);
