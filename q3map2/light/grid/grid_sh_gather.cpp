@@ -15,6 +15,8 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "grid_sh.h"
 #include "light_context.h"
@@ -109,12 +111,19 @@ std::vector<Vec3> gatherDirections(int count) {
 }
 
 std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<LightImage>& images, Log& log) {
-    std::vector<ShaderAlbedo> out(ctx.bsp.shaders.size());
+    const size_t count = ctx.bsp.shaders.size();
+    std::vector<ShaderAlbedo> out(count);
     if (!ctx.vfs || !ctx.shaderTable) return out;
-    images.clear();
-    images.reserve(ctx.bsp.shaders.size());  // pointers into it stay valid
-    int missing = 0;
-    for (size_t i = 0; i < ctx.bsp.shaders.size(); ++i) {
+    // Each shader's image is found and decoded on its own (in parallel: a map names dozens of
+    // textures); the warnings are logged afterwards in shader order, as one shader after another
+    // would log them.
+    struct Found {
+        std::optional<LightImage> image;
+        Vec3 average;
+        std::vector<std::string> warnings;
+    };
+    std::vector<Found> found(count);
+    auto find = [&](size_t i) {
         const std::string name(ctx.bsp.shaders[i].name, strnlen(ctx.bsp.shaders[i].name, sizeof(ctx.bsp.shaders[i].name)));
         const ShaderInfo& info = ctx.shaderTable->find(name);
         for (const std::string& candidate : info.lightImageCandidates()) {
@@ -122,19 +131,32 @@ std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<
             try {
                 loaded = loadImage(*ctx.vfs, candidate);
             } catch (const std::exception& e) {
-                log.warning(e.what());
+                found[i].warnings.push_back(e.what());
             }
             if (!loaded || loaded->image.width <= 0) continue;
-            LightImage image;
+            LightImage& image = found[i].image.emplace();
             image.width = loaded->image.width;
             image.height = loaded->image.height;
             image.rgba = std::move(loaded->image.rgba);
-            images.push_back(std::move(image));
-            out[i].image = &images.back();
-            out[i].average = images.back().averageColor();
-            break;
+            found[i].average = image.averageColor();
+            return;
         }
-        if (!out[i].image) ++missing;
+    };
+    tbb::task_arena(ctx.threads > 0 ? ctx.threads : tbb::task_arena::automatic).execute([&] {
+        tbb::parallel_for(size_t(0), count, find);
+    });
+    images.clear();
+    images.reserve(count);  // pointers into it stay valid
+    int missing = 0;
+    for (size_t i = 0; i < count; ++i) {
+        for (const std::string& warning : found[i].warnings) log.warning(warning);
+        if (!found[i].image) {
+            ++missing;
+            continue;
+        }
+        images.push_back(std::move(*found[i].image));
+        out[i].image = &images.back();
+        out[i].average = found[i].average;
     }
     if (missing > 0) log.info(strCat(missing, " shaders without an image reflect 0.5 grey"));
     return out;
