@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 namespace q3::light {
 
@@ -33,18 +34,28 @@ LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect w
     out.resize(light.color.size());
     for (int y = any.y0; y <= any.y1; ++y)
         for (int x = any.x0; x <= any.x1; ++x) out[light.index(x, y)] = light.color[light.index(x, y)];
+    // The border of the square counts half per axis (a quarter in the corners): weights by offset.
+    const int side = 2 * radius + 1;
+    thread_local std::vector<float> weights;
+    weights.resize(size_t(side) * size_t(side));
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx)
+            weights[size_t(dy + radius) * size_t(side) + size_t(dx + radius)] =
+                (std::abs(dx) == radius ? 0.5f : 1.0f) * (std::abs(dy) == radius ? 0.5f : 1.0f);
     for (int y = lit.y0; y <= lit.y1; ++y) {
+        const int sy0 = std::max(0, y - radius), sy1 = std::min(light.height - 1, y + radius);
         for (int x = lit.x0; x <= lit.x1; ++x) {
             if (light.state[light.index(x, y)] != LuxelState::Mapped) continue;
+            const int sx0 = std::max(0, x - radius), sx1 = std::min(light.width - 1, x + radius);
             Vec3 sum;
             float weightSum = 0.0f;
-            for (int sy = std::max(0, y - radius); sy <= std::min(light.height - 1, y + radius); ++sy) {
-                for (int sx = std::max(0, x - radius); sx <= std::min(light.width - 1, x + radius); ++sx) {
-                    const size_t i = light.index(sx, sy);
-                    if (light.state[i] != LuxelState::Mapped) continue;
-                    // The border of the square counts half per axis (a quarter in the corners).
-                    const float weight = (std::abs(sx - x) == radius ? 0.5f : 1.0f) * (std::abs(sy - y) == radius ? 0.5f : 1.0f);
-                    sum += light.color[i] * weight;
+            for (int sy = sy0; sy <= sy1; ++sy) {
+                const size_t row = light.index(0, sy);
+                const float* weightRow = &weights[size_t(sy - y + radius) * size_t(side)];
+                for (int sx = sx0; sx <= sx1; ++sx) {
+                    if (light.state[row + size_t(sx)] != LuxelState::Mapped) continue;
+                    const float weight = weightRow[sx - x + radius];
+                    sum += light.color[row + size_t(sx)] * weight;
                     weightSum += weight;
                 }
             }
