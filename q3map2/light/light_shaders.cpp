@@ -17,14 +17,6 @@
 namespace q3::light {
 namespace {
 
-LightImage toLightImage(const Image& image) {
-    LightImage out;
-    out.width = image.width;
-    out.height = image.height;
-    out.rgba = image.rgba;
-    return out;
-}
-
 bool needsImage(const LightingShader& s) {
     return (s.surfaceLight > 0 && !s.hasLightRGB) || s.alphaShadow || s.lightFilter;
 }
@@ -49,32 +41,14 @@ LightingShader shaderWithoutImage(const ShaderInfo& info, const bsp::Shader& rec
     return probe;
 }
 
-// One image read ahead of its first use: the image (null when it does not exist) and the warning
-// its load gave, logged only when the image is first used, where a sequential load would log it.
-struct ReadAhead {
-    std::unique_ptr<LightImage> image;
-    std::string warning;
-};
-
-ReadAhead readImage(const Vfs& vfs, const std::string& name) {
-    ReadAhead out;
-    try {
-        if (std::optional<LoadedImage> li = loadImage(vfs, name))
-            out.image = std::make_unique<LightImage>(toLightImage(li->image));
-    } catch (const std::exception& e) {
-        out.warning = e.what();
-    }
-    return out;
-}
-
 // The image of that name from the cache, taking it from `ahead` or loading it on first use; null
 // when it does not exist.
-const LightImage* cachedImage(LightingShaderSet& set, std::map<std::string, ReadAhead>& ahead, const Vfs& vfs,
+const LightImage* cachedImage(LightingShaderSet& set, std::map<std::string, LightImageRead>& ahead, const Vfs& vfs,
                               const std::string& name, Log& log) {
     auto it = set.images.find(name);
     if (it != set.images.end()) return it->second.get();
     const auto early = ahead.find(name);
-    ReadAhead loaded = early != ahead.end() ? std::move(early->second) : readImage(vfs, name);
+    LightImageRead loaded = early != ahead.end() ? std::move(early->second) : readLightImage(vfs, name);
     if (!loaded.warning.empty()) log.warning(loaded.warning);
     const LightImage* image = loaded.image.get();
     set.images.emplace(name, std::move(loaded.image));
@@ -90,8 +64,8 @@ bool wantsSkyColors(const LightingShader& s) {
 // The images the shaders will first ask for (each shader's first light image candidate, the sky
 // boxes whose colours sky lights sample), decoded in parallel: a map whose area lights take their
 // colour from their textures decodes dozens of them.
-std::map<std::string, ReadAhead> readImagesAhead(const bsp::Bsp& bsp, const ShaderTable& table, const Vfs& vfs,
-                                                 int threads) {
+std::map<std::string, LightImageRead> readImagesAhead(const bsp::Bsp& bsp, const ShaderTable& table,
+                                                      const Vfs& vfs, int threads) {
     std::vector<std::string> names;
     for (const bsp::Shader& record : bsp.shaders) {
         const ShaderInfo& info = table.find(std::string(record.name, strnlen(record.name, sizeof(record.name))));
@@ -105,16 +79,31 @@ std::map<std::string, ReadAhead> readImagesAhead(const bsp::Bsp& bsp, const Shad
     }
     std::sort(names.begin(), names.end());
     names.erase(std::unique(names.begin(), names.end()), names.end());
-    std::vector<ReadAhead> read(names.size());
+    std::vector<LightImageRead> read(names.size());
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
-        tbb::parallel_for(size_t(0), names.size(), [&](size_t i) { read[i] = readImage(vfs, names[i]); });
+        tbb::parallel_for(size_t(0), names.size(), [&](size_t i) { read[i] = readLightImage(vfs, names[i]); });
     });
-    std::map<std::string, ReadAhead> out;
+    std::map<std::string, LightImageRead> out;
     for (size_t i = 0; i < names.size(); ++i) out.emplace(names[i], std::move(read[i]));
     return out;
 }
 
 }  // namespace
+
+LightImageRead readLightImage(const Vfs& vfs, const std::string& name) {
+    LightImageRead out;
+    try {
+        if (std::optional<LoadedImage> li = loadImage(vfs, name)) {
+            out.image = std::make_unique<LightImage>();
+            out.image->width = li->image.width;
+            out.image->height = li->image.height;
+            out.image->rgba = std::move(li->image.rgba);
+        }
+    } catch (const std::exception& e) {
+        out.warning = e.what();
+    }
+    return out;
+}
 
 LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image) {
     LightingShader s;
@@ -180,7 +169,7 @@ LightingShaderSet resolveLightingShaders(const bsp::Bsp& bsp, const ShaderTable&
                                          int threads) {
     LightingShaderSet set;
     set.shaders.reserve(bsp.shaders.size());
-    std::map<std::string, ReadAhead> ahead;
+    std::map<std::string, LightImageRead> ahead;
     if (vfs) ahead = readImagesAhead(bsp, table, *vfs, threads);
     for (const bsp::Shader& record : bsp.shaders) {
         const std::string name(record.name, strnlen(record.name, sizeof(record.name)));

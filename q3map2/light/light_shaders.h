@@ -25,6 +25,14 @@ struct LightingShaderSet {
     int missingImages = 0;
 };
 
+// One image read for lighting through the VFS: the image (null when it does not exist) and the
+// warning its load gave (empty without one), to be logged where the caller's order says.
+struct LightImageRead {
+    std::unique_ptr<LightImage> image;
+    std::string warning;
+};
+LightImageRead readLightImage(const Vfs& vfs, const std::string& name);
+
 // The lighting view of one script shader. `image` may be null (no light image found).
 LightingShader toLightingShader(const ShaderInfo& info, const LightImage* image);
 

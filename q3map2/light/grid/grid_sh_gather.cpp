@@ -15,7 +15,6 @@
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "grid_sh.h"
@@ -23,7 +22,7 @@
 #include "light_text.h"
 #include "patch.h"
 #include "shader_info.h"
-#include "vfs_image.h"
+#include "light_shaders.h"
 
 namespace q3::light {
 namespace {
@@ -116,29 +115,29 @@ std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<
     if (!ctx.vfs || !ctx.shaderTable) return out;
     // Each shader's image is found and decoded on its own (in parallel: a map names dozens of
     // textures); the warnings are logged afterwards in shader order, as one shader after another
-    // would log them.
+    // would log them. Images the lighting shaders decoded already are taken from their cache (a
+    // read that succeeds logs nothing, so the messages stay the same).
     struct Found {
-        std::optional<LightImage> image;
+        const LightImage* cached = nullptr;
+        std::unique_ptr<LightImage> image;
         Vec3 average;
         std::vector<std::string> warnings;
     };
     std::vector<Found> found(count);
     auto find = [&](size_t i) {
         const std::string name(ctx.bsp.shaders[i].name, strnlen(ctx.bsp.shaders[i].name, sizeof(ctx.bsp.shaders[i].name)));
-        const ShaderInfo& info = ctx.shaderTable->find(name);
-        for (const std::string& candidate : info.lightImageCandidates()) {
-            std::optional<LoadedImage> loaded;
-            try {
-                loaded = loadImage(*ctx.vfs, candidate);
-            } catch (const std::exception& e) {
-                found[i].warnings.push_back(e.what());
+        for (const std::string& candidate : ctx.shaderTable->find(name).lightImageCandidates()) {
+            const auto cached = ctx.shaders.images.find(candidate);
+            if (cached != ctx.shaders.images.end() && cached->second && cached->second->width > 0) {
+                found[i].cached = cached->second.get();
+                found[i].average = found[i].cached->averageColor();
+                return;
             }
-            if (!loaded || loaded->image.width <= 0) continue;
-            LightImage& image = found[i].image.emplace();
-            image.width = loaded->image.width;
-            image.height = loaded->image.height;
-            image.rgba = std::move(loaded->image.rgba);
-            found[i].average = image.averageColor();
+            LightImageRead read = readLightImage(*ctx.vfs, candidate);
+            if (!read.warning.empty()) found[i].warnings.push_back(std::move(read.warning));
+            if (!read.image || read.image->width <= 0) continue;
+            found[i].average = read.image->averageColor();
+            found[i].image = std::move(read.image);
             return;
         }
     };
@@ -150,12 +149,15 @@ std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<
     int missing = 0;
     for (size_t i = 0; i < count; ++i) {
         for (const std::string& warning : found[i].warnings) log.warning(warning);
-        if (!found[i].image) {
+        if (found[i].image) {
+            images.push_back(std::move(*found[i].image));
+            out[i].image = &images.back();
+        } else if (found[i].cached) {
+            out[i].image = found[i].cached;
+        } else {
             ++missing;
             continue;
         }
-        images.push_back(std::move(*found[i].image));
-        out[i].image = &images.back();
         out[i].average = found[i].average;
     }
     if (missing > 0) log.info(strCat(missing, " shaders without an image reflect 0.5 grey"));

@@ -51,7 +51,8 @@ struct ShaderAlbedo {
 
 // The albedo of every BSP shader: the first image of the shader's light-image candidates that
 // loads (editor image, then the shader name), texel colour / 255. Shaders without an image get
-// 0.5 grey. `images` owns the loaded images.
+// 0.5 grey. `images` owns the images decoded here; those the lighting shaders hold already
+// (ctx.shaders.images) are pointed at, not decoded again.
 std::vector<ShaderAlbedo> loadShaderAlbedo(const LightContext& ctx, std::vector<LightImage>& images, Log& log);
 
 // The shader albedo of a run, loaded by the first step that needs it (-bounce, -shgather) and kept
