@@ -232,13 +232,9 @@ std::vector<uint8_t> dirtWantedLuxels(const LuxelImage& image) {
     std::vector<uint8_t> wanted(image.color.size(), 0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-            if (i >= image.color.size() || image.color[i] == Vec3{}) continue;
+            if (image.color[image.index(x, y)] == Vec3{}) continue;
             for (int sy = std::max(0, y - 1); sy <= std::min(h - 1, y + 1); ++sy)
-                for (int sx = std::max(0, x - 1); sx <= std::min(w - 1, x + 1); ++sx) {
-                    const size_t j = static_cast<size_t>(sy) * static_cast<size_t>(w) + static_cast<size_t>(sx);
-                    if (j < wanted.size()) wanted[j] = 1;
-                }
+                for (int sx = std::max(0, x - 1); sx <= std::min(w - 1, x + 1); ++sx) wanted[image.index(sx, sy)] = 1;
         }
     return wanted;
 }
