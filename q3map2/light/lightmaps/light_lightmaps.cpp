@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <future>
 
 #include "bounce_passes.h"
 #include "deluxe.h"
@@ -253,7 +254,7 @@ struct StoreResult {
 };
 
 // Bytes, packing and (when `final`) the pictures, styled pages and what later phases read.
-StoreResult storeLightmaps(LightContext& ctx, std::vector<SurfaceLight>& lit, bool final, Log& log) {
+StoreResult storeLightmaps(LightContext& ctx, const std::vector<SurfaceLight>& lit, bool final, Log& log) {
     const LightOptions& o = ctx.options;
     const std::optional<DeluxeSettings> deluxe = deluxeSettings(ctx);
     // One block per lit raw lightmap, in their order; made in parallel (each its own slot and surfaces).
@@ -311,11 +312,25 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     const LuxelPasses* passes = ctx.luxelPasses.get();
     const bool deluxe = deluxeSettings(ctx).has_value();
 
+    // The bounces reflect off the textures: on more than one thread those are read while the direct
+    // pass lights (the reading leaves a core idle, the pass none), and their messages given after
+    // it, where a read that follows the pass gives them.
+    Log albedoLog;
+    albedoLog.setVerbose(log.verbose());
+    albedoLog.holdMessages();
+    std::future<void> albedoRead;
+    if (o.bounce > 0 && ctx.threads != 1)
+        albedoRead = std::async(std::launch::async, [&ctx, &albedoLog] { shaderAlbedo(ctx, albedoLog); });
     std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes,
                                                SurfacePass{ctx.lights, true, deluxe}, log);
-    // Without bounces the direct pass is the total (a copy of every luxel would only cost time).
-    std::vector<SurfaceLight> total = o.bounce <= 0 ? std::move(pass) : o.bounceOnly ? emptyLike(pass) : pass;
+    // The direct pass starts the total; it stays the first bounce's source through `total` (a copy
+    // of every luxel would only cost time), but for -bounceonly, whose total starts dark.
+    std::vector<SurfaceLight> total = o.bounce > 0 && o.bounceOnly ? emptyLike(pass) : std::move(pass);
     if (o.bounce > 0) {
+        if (albedoRead.valid()) {
+            albedoRead.get();
+            albedoLog.replayInto(log);
+        }
         BouncePasses bounce(ctx, shaderAlbedo(ctx, log), log);
         for (int b = 1; b <= o.bounce; ++b) {
             if (!o.noBounceStore) {
@@ -324,7 +339,8 @@ void lightLightmaps(LightContext& ctx, Log& log) {
                 storeLightmaps(ctx, total, false, log);
                 writeLitBsp(ctx, log);
             }
-            std::vector<Light> emitters = bounce.emitters(pass, b, b == 1 ? ctx.world.ambient : Vec3{});
+            const std::vector<SurfaceLight>& source = b == 1 && !o.bounceOnly ? total : pass;
+            std::vector<Light> emitters = bounce.emitters(source, b, b == 1 ? ctx.world.ambient : Vec3{});
             if (emitters.empty()) {
                 log.info("No diffuse light to calculate, ending radiosity.");
                 break;
