@@ -13,6 +13,7 @@
 #include "light_context.h"
 #include "light_stage.h"
 #include "lightmap_layout.h"
+#include "surface_lighting.h"
 #include "bsp_scene.h"
 #include "test_data.h"
 
@@ -359,6 +360,57 @@ TEST(LightPipeline, LuxelsNextToAPlanarSurfaceAreLitWhereTheyLie) {
 
 TEST(LightPipeline, MissingBspIsAnError) {
     EXPECT_ANY_THROW(runStage(test::tempDir() / "maps" / "nothing.bsp", 1));
+}
+
+// A later pass over a raw lightmap (a radiosity bounce) lights the sample points the first pass
+// placed: handed the first pass's result, it lays nothing out again and gives the luxels a pass of
+// its own would give.
+TEST(PassSamples, ALaterPassLightsTheFirstPassesPoints) {
+    CommonOptions common;
+    common.mapPath = writeRoom(test::tempDir(), makeRoom());
+    common.threads = 1;
+    Log log(false);
+    LightContext ctx;
+    loadLightInputs(ctx, common, log);
+    buildSurfaceGeometry(ctx);
+    buildScene(ctx);
+    createLights(ctx, log);
+    ASSERT_FALSE(ctx.lights.empty());
+    const LayoutOptions layout = layoutOptionsFor(ctx, log);
+    const LightingEnv env = surfaceLightingEnv(ctx);
+    const int floor[] = {0};
+
+    SurfacePass first{ctx.lights, true, false};
+    first.keepSamples = true;
+    const SurfaceLight direct = lightSurface(ctx, env, floor, layout, nullptr, first);
+    ASSERT_TRUE(direct.ok);
+    ASSERT_TRUE(direct.samples);
+    EXPECT_EQ(direct.samples->points.size(), direct.samples->states.size());
+
+    // A bounce-like pass (no ambient) on its own, and one handed the first pass's samples.
+    const SurfacePass later{ctx.lights, false, false};
+    const SurfaceLight alone = lightSurface(ctx, env, floor, layout, nullptr, later);
+    const SurfaceLight reused = lightSurface(ctx, env, floor, layout, nullptr, later, &direct);
+    ASSERT_TRUE(alone.ok && reused.ok);
+    EXPECT_FALSE(alone.samples);  // kept only when asked
+    EXPECT_EQ(reused.luxelCount, alone.luxelCount);
+    ASSERT_EQ(reused.layers.size(), alone.layers.size());
+    for (size_t k = 0; k < alone.layers.size(); ++k) EXPECT_EQ(reused.layers[k].color, alone.layers[k].color);
+    EXPECT_EQ(reused.used, alone.used);
+    // The floor is lit where the table does not shade it, so the comparison above is not of darkness.
+    float brightest = 0;
+    for (const Vec3& c : alone.layers[0].color) brightest = std::max(brightest, c.x);
+    EXPECT_GT(brightest, 10.0f);
+
+    // The samples handed over are the ones lit: points moved off the floor light differently.
+    SurfaceLight moved = direct;
+    auto shifted = std::make_shared<LuxelSamples>(*direct.samples);
+    for (std::optional<SamplePoint>& p : shifted->points)
+        if (p) p->origin.z += 20;
+    moved.samples = shifted;
+    const SurfaceLight fromMoved = lightSurface(ctx, env, floor, layout, nullptr, later, &moved);
+    ASSERT_TRUE(fromMoved.ok);
+    EXPECT_NE(fromMoved.layers[0].color, alone.layers[0].color);
 }
 
 }  // namespace

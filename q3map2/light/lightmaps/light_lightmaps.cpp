@@ -134,10 +134,12 @@ double estimatedLuxels(const LightContext& ctx, std::span<const int> group) {
     return total;
 }
 
-// Lights every raw lightmap (a group of surfaces) for one pass, in parallel, one slot each.
+// Lights every raw lightmap (a group of surfaces) for one pass, in parallel, one slot each;
+// `previous` (an earlier pass's results, slot for slot) lends them its sample points.
 std::vector<SurfaceLight> lightPass(const LightContext& ctx, const std::vector<std::vector<int>>& surfaces,
                                     const LayoutOptions& layoutOptions, const LuxelPasses* passes,
-                                    const SurfacePass& pass, Log& log) {
+                                    const SurfacePass& pass, Log& log,
+                                    const std::vector<SurfaceLight>* previous = nullptr) {
     const LightingEnv env = surfaceLightingEnv(ctx);
     const std::vector<float> envelopes = lightEnvelopes(pass.lights, env.settings.forceFast);
     const LightReach reach(pass.lights, envelopes);
@@ -157,7 +159,9 @@ std::vector<SurfaceLight> lightPass(const LightContext& ctx, const std::vector<s
     std::atomic<size_t> next{0};
     auto worker = [&](int) {
         for (size_t k = next++; k < order.size(); k = next++) {
-            results[order[k]] = lightSurface(ctx, env, surfaces[order[k]], layoutOptions, passes, withEnvelopes);
+            const size_t slot = order[k];
+            const SurfaceLight* earlier = previous && slot < previous->size() ? &(*previous)[slot] : nullptr;
+            results[slot] = lightSurface(ctx, env, surfaces[slot], layoutOptions, passes, withEnvelopes, earlier);
             progress.advance();
         }
     };
@@ -321,8 +325,10 @@ void lightLightmaps(LightContext& ctx, Log& log) {
     std::future<void> albedoRead;
     if (o.bounce > 0 && ctx.threads != 1)
         albedoRead = std::async(std::launch::async, [&ctx, &albedoLog] { shaderAlbedo(ctx, albedoLog); });
-    std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes,
-                                               SurfacePass{ctx.lights, true, deluxe}, log);
+    // With bounces, the direct pass keeps its sample points for them: they light the same luxels.
+    SurfacePass direct{ctx.lights, true, deluxe};
+    direct.keepSamples = o.bounce > 0;
+    std::vector<SurfaceLight> pass = lightPass(ctx, surfaces, layoutOptions, passes, direct, log);
     // The direct pass starts the total; it stays the first bounce's source through `total` (a copy
     // of every luxel would only cost time), but for -bounceonly, whose total starts dark.
     std::vector<SurfaceLight> total = o.bounce > 0 && o.bounceOnly ? emptyLike(pass) : std::move(pass);
@@ -345,7 +351,7 @@ void lightLightmaps(LightContext& ctx, Log& log) {
                 log.info("No diffuse light to calculate, ending radiosity.");
                 break;
             }
-            pass = lightPass(ctx, surfaces, layoutOptions, nullptr, SurfacePass{emitters, false, deluxe}, log);
+            pass = lightPass(ctx, surfaces, layoutOptions, nullptr, SurfacePass{emitters, false, deluxe}, log, &total);
             addPass(total, pass);
             ctx.bounceLights.push_back(std::move(emitters));
         }

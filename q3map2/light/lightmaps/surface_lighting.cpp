@@ -511,7 +511,8 @@ LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log) {
 }
 
 SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv, std::span<const int> surfaceNums,
-                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass) {
+                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass,
+                          const SurfaceLight* previous) {
     SurfaceLight result;
     if (surfaceNums.empty()) return result;
     // The first surface speaks for the group: its members share model, shader, entity, shadow
@@ -525,25 +526,31 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     const SurfaceExtra& extra = ctx.extras.forSurface(surfaceNum);
     const LightOptions& o = ctx.options;
 
-    std::vector<SurfaceGeometry> geometries;
-    for (int member : surfaceNums) {
-        SurfaceGeometry& geometry = geometries.emplace_back(surfaceGeometry(ctx.bsp, member, ctx.shadedNormals));
-        const bsp::Surface& memberSurface = ctx.bsp.surfaces[size_t(member)];
-        if (memberSurface.surfaceType == bsp::MST_PATCH)
-            geometry.mesh = curvedMesh(ctx.bsp, memberSurface, ctx.shadedNormals,
-                                       ctx.extras.loaded ? ctx.extras.forSurface(member).longestCurve : 0.0f);
+    const bool reuse = previous && previous->ok && previous->samples;
+    std::optional<RawLightmap> layout;
+    if (reuse) {
+        layout = previous->layout;
+    } else {
+        std::vector<SurfaceGeometry> geometries;
+        for (int member : surfaceNums) {
+            SurfaceGeometry& geometry = geometries.emplace_back(surfaceGeometry(ctx.bsp, member, ctx.shadedNormals));
+            const bsp::Surface& memberSurface = ctx.bsp.surfaces[size_t(member)];
+            if (memberSurface.surfaceType == bsp::MST_PATCH)
+                geometry.mesh = curvedMesh(ctx.bsp, memberSurface, ctx.shadedNormals,
+                                           ctx.extras.loaded ? ctx.extras.forSurface(member).longestCurve : 0.0f);
+        }
+        SurfaceLightmapParams params;
+        params.sampleSize = resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize,
+                                              o.sampleSize, o.sampleScale);
+        params.axis = extra.lightmapAxis;
+        if (shader.lightmapAxis >= 0 && shader.lightmapAxis < 3) {
+            params.axis = Vec3{};
+            params.axis[shader.lightmapAxis] = 1;
+        }
+        params.sampleOffset = shader.lightmapSampleOffset;
+        Log quiet(false);
+        layout = layoutSurfaceGroup(geometries, params, layoutOptions, &quiet);
     }
-    SurfaceLightmapParams params;
-    params.sampleSize =
-        resolveSampleSize(ctx.extras.loaded, extra.sampleSize, shader.lightmapSampleSize, o.sampleSize, o.sampleScale);
-    params.axis = extra.lightmapAxis;
-    if (shader.lightmapAxis >= 0 && shader.lightmapAxis < 3) {
-        params.axis = Vec3{};
-        params.axis[shader.lightmapAxis] = 1;
-    }
-    params.sampleOffset = shader.lightmapSampleOffset;
-    Log quiet(false);
-    std::optional<RawLightmap> layout = layoutSurfaceGroup(geometries, params, layoutOptions, &quiet);
     if (!layout) return result;
     RawLightmap& raw = *layout;
 
@@ -556,34 +563,39 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             : ctx.surfaceClusters[size_t(surfaceNum)];
     LuxelSampler sampler{ctx, env, raw, offset, shader.twoSided, lightmapClusters};
 
-    // Sample points of every super luxel.
+    // Sample points of every super luxel (an earlier pass's, when given): each lit one starts at
+    // the ambient light.
     const Vec3 ambient = pass.direct ? surfaceAmbient(ctx, surfaceNum) : Vec3{};
     LuxelImage total(w, h);
-    std::vector<std::optional<SamplePoint>> points(static_cast<size_t>(w) * static_cast<size_t>(h));
-    std::vector<Vec3> superNormals(points.size());
-    Bounds bounds;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const Luxel& lx = raw.luxel(x, y);
-            const size_t i = total.index(x, y);
-            if (!lx.mapped) continue;
-            superNormals[i] = lx.normal;
-            points[i] = sampler.samplePoint(lx);
-            if (points[i]) {
-                total.state[i] = LuxelState::Mapped;
-                total.color[i] = ambient;
-                bounds.add(points[i]->origin);
-                ++result.luxelCount;
-            } else {
-                total.state[i] = LuxelState::Occluded;
+    std::vector<std::optional<SamplePoint>> points;
+    std::vector<Vec3> superNormals;
+    if (reuse) {
+        points = previous->samples->points;
+        superNormals = previous->samples->normals;
+        total.state = previous->samples->states;
+    } else {
+        points.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
+        superNormals.resize(points.size());
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const Luxel& lx = raw.luxel(x, y);
+                const size_t i = total.index(x, y);
+                if (!lx.mapped) continue;
+                superNormals[i] = lx.normal;
+                points[i] = sampler.samplePoint(lx);
+                total.state[i] = points[i] ? LuxelState::Mapped : LuxelState::Occluded;
             }
-        }
-    if (raw.planar && raw.axisNum >= 0) mapLuxelRings(sampler, raw, points, superNormals, total, ambient);
+        if (raw.planar && raw.axisNum >= 0) mapLuxelRings(sampler, raw, points, superNormals, total, ambient);
+    }
+    Bounds bounds;
     for (size_t i = 0; i < points.size(); ++i)
-        if (points[i] && !raw.luxels[i].mapped) {
+        if (points[i]) {
+            total.color[i] = ambient;
             bounds.add(points[i]->origin);
             ++result.luxelCount;
         }
+    if (pass.keepSamples)
+        result.samples = std::make_shared<const LuxelSamples>(LuxelSamples{points, superNormals, total.state});
 
     const std::span<const int> groupClusters =
         size_t(surfaceNum) < ctx.lightmapGroupClusters.size()

@@ -6,11 +6,15 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "bspfile.h"
+#include "light_contribution.h"
 #include "light_reach.h"
+#include "lightmap_filter.h"
 #include "lightmap_layout.h"
 #include "lights.h"
 #include "vec3.h"
@@ -39,6 +43,16 @@ struct SurfacePass {
     std::span<const float> envelopes = {};
     // Which of `lights` reach a box (built from `envelopes`); null: every light is tested.
     const LightReach* reach = nullptr;
+    // Keep the sample points in the result (SurfaceLight::samples), for the passes that follow.
+    bool keepSamples = false;
+};
+
+// Where a raw lightmap's super luxels are sampled, as its first pass placed them: a later pass of
+// the same lightmap lights the same points (its layout is SurfaceLight::layout).
+struct LuxelSamples {
+    std::vector<std::optional<SamplePoint>> points;  // per super luxel; nullopt: in solid or unmapped
+    std::vector<Vec3> normals;                       // per super luxel
+    std::vector<LuxelState> states;
 };
 
 struct SurfaceLight {
@@ -53,6 +67,7 @@ struct SurfaceLight {
     std::vector<Vec3> normals;          // per BSP luxel: mean luxel normal (deluxe fallback and frame)
     uint64_t luxelCount = 0;
     uint64_t styleLimitHits = 0;        // lights dropped: the surface already had four styles
+    std::shared_ptr<const LuxelSamples> samples;  // with SurfacePass::keepSamples
 
     const LightmapLayer* layer(int style) const;
     LightmapLayer& layerFor(int style);  // creates the layer (zero light) when missing
@@ -71,7 +86,10 @@ LayoutOptions layoutOptionsFor(const LightContext& ctx, Log& log);
 // Lights one raw lightmap, the surfaces `surfaceNums` share (q3map2's SetupSurfaceLightmaps groups;
 // one surface alone most often), for one pass. `passes` (floodlight, dirt) apply to the direct pass
 // only.
+// `previous`, when it holds the samples of an earlier pass of the same lightmap, spares the layout
+// and the sample points.
 SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& env, std::span<const int> surfaceNums,
-                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass);
+                          const LayoutOptions& layoutOptions, const LuxelPasses* passes, const SurfacePass& pass,
+                          const SurfaceLight* previous = nullptr);
 
 }  // namespace q3::light
