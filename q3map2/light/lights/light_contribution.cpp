@@ -150,7 +150,8 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
 
 // Most area-light pairs inside the envelope end below the -fast tolerance: the cheap bound rejects
 // those before the exact form factor, with the outcome the exact factor would give.
-bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal, const LightingEnv& env) {
+[[gnu::always_inline]] inline bool surelyBelowFastTolerance(const Light& light, Vec3 pushed, Vec3 normal,
+                                                            const LightingEnv& env) {
     return (light.fast || env.settings.forceFast) && light.add > 0 &&
            formFactorUpperBound(light.emitter, pushed, normal) * light.add <= light.falloffTolerance;
 }
