@@ -239,19 +239,41 @@ void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
         if (front.v.size() >= 3) fronts.push_back(std::move(front));
         if (back.v.size() >= 3) backs.push_back(std::move(back));
     }
-    windings.clear();
+    std::vector<Winding>().swap(windings);  // freed before the halves are split further
     subdivideLeaf(std::move(fronts), depth + 1, emit);
     subdivideLeaf(std::move(backs), depth + 1, emit);
 }
 
+// The corners of a winding where it came to rest.
+struct CornerSpan {
+    const TraceVert* first;
+    size_t count;
+};
+
+// The windings a leaf's subdivision emits, in order, their corners side by side: a few bytes a
+// corner instead of a whole winding with room for twelve.
+struct EmittedPieces {
+    struct Entry {
+        size_t surface;
+        size_t first, count;  // in `corners`
+    };
+    std::vector<TraceVert> corners;
+    std::vector<Entry> windings;
+
+    void add(const Winding& w) {
+        windings.push_back({w.surface, corners.size(), w.v.size()});
+        corners.insert(corners.end(), w.v.begin(), w.v.end());
+    }
+};
+
 // Appends the fan of a winding to `out`, each triangle grown by the barycentric slack unless
 // `exact`; triangles whose edge cross product is below the coplanar epsilon are dropped.
-void appendPieces(const Winding& w, bool exact, SceneSurface& out) {
+void appendPieces(CornerSpan w, bool exact, SceneSurface& out) {
     const float e = exact ? 0.0f : kTraceBaryEpsilon;
-    const TraceVert& a = w.v[0];
-    for (size_t i = 1; i + 1 < w.v.size(); ++i) {
-        const TraceVert& b = w.v[i];
-        const TraceVert& c = w.v[i + 1];
+    const TraceVert& a = w.first[0];
+    for (size_t i = 1; i + 1 < w.count; ++i) {
+        const TraceVert& b = w.first[i];
+        const TraceVert& c = w.first[i + 1];
         const Vec3 e1 = b.xyz - a.xyz, e2 = c.xyz - a.xyz;
         if (length(cross(e1, e2)) < kTraceCoplanarEpsilon) continue;
         // The corners of the region u >= -e, v >= -e, u + v <= 1 + e of the triangle's own
@@ -283,7 +305,7 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
     // Per leaf: whether it holds pieces, whether q3map2 subdivides it, and the windings its
     // subdivision emits, in order.
     std::vector<uint8_t> holdsPieces(leafCount, 0), subdivided(leafCount, 0);
-    std::vector<std::vector<Winding>> emitted(leafCount);
+    std::vector<EmittedPieces> emitted(leafCount);
     auto filterSurface = [&](size_t i) {
         const SceneSurface& s = surfaces[i];
         if (!TraceScene::castsShadow(s, options)) {
@@ -329,7 +351,7 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
             subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
         }
         subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth,
-                      [&emitted, l](Winding&& w) { emitted[l].push_back(std::move(w)); });
+                      [&emitted, l](Winding&& w) { emitted[l].add(w); });
     };
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
@@ -348,15 +370,21 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
     });
     // Each surface's pieces in the order the sequential emission gives (direct windings exist only
     // without a tree, emitted ones only with one), fanned out surface by surface in parallel.
-    std::vector<std::vector<const Winding*>> bySurface(surfaces.size());
+    std::vector<std::vector<CornerSpan>> bySurface(surfaces.size());
     for (const std::vector<Winding>& list : direct)
-        for (const Winding& w : list) bySurface[w.surface].push_back(&w);
-    for (const std::vector<Winding>& list : emitted)
-        for (const Winding& w : list) bySurface[w.surface].push_back(&w);
+        for (const Winding& w : list) bySurface[w.surface].push_back({w.v.begin(), w.v.size()});
+    for (const EmittedPieces& leaf : emitted)
+        for (const EmittedPieces::Entry& w : leaf.windings)
+            bySurface[w.surface].push_back({leaf.corners.data() + w.first, w.count});
     auto fan = [&](size_t i) {
         const SceneSurface& s = surfaces[i];
         const bool exact = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !s.shader->sky;
-        for (const Winding* w : bySurface[i]) appendPieces(*w, exact, out[i]);
+        size_t fans = 0;  // an upper bound of the triangles, so that the arrays grow once
+        for (const CornerSpan& w : bySurface[i]) fans += w.count >= 3 ? w.count - 2 : 0;
+        out[i].xyz.reserve(fans * 3);
+        out[i].st.reserve(fans * 6);
+        out[i].triangles.reserve(fans * 3);
+        for (const CornerSpan& w : bySurface[i]) appendPieces(w, exact, out[i]);
     };
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
