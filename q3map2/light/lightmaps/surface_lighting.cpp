@@ -411,8 +411,9 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
 
 // The rings of unmapped luxels around the mapped ones (LuxelSampler::ringPoint), grown
 // max(1, superSample / 2) times; each ring sees only the luxels placed before it.
-void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, std::vector<std::optional<SamplePoint>>& points,
-                   std::vector<Vec3>& normals, LuxelImage& image, Vec3 ambient) {
+void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, LuxelSamples& samples) {
+    std::vector<std::optional<SamplePoint>>& points = samples.points;
+    std::vector<Vec3>& normals = samples.normals;
     const int w = raw.superWidth(), h = raw.superHeight();
     const int rings = std::max(1, raw.superSample / 2);
     std::vector<uint8_t> placed(points.size(), 0);
@@ -437,10 +438,29 @@ void mapLuxelRings(const LuxelSampler& sampler, const RawLightmap& raw, std::vec
                 placed[i] = 1;
                 normals[i] = normal;
                 points[i] = sampler.ringPoint(x, y, normal);
-                image.state[i] = points[i] ? LuxelState::Mapped : LuxelState::Occluded;
-                if (points[i]) image.color[i] = ambient;
+                samples.states[i] = points[i] ? LuxelState::Mapped : LuxelState::Occluded;
             }
     }
+}
+
+// Where the super luxels of `raw` are sampled: each mapped one at its sample point (nullopt in
+// solid), then the rings around a planar lightmap.
+LuxelSamples placeSamples(const LuxelSampler& sampler, const RawLightmap& raw) {
+    const int w = raw.superWidth(), h = raw.superHeight();
+    const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h);
+    LuxelSamples samples{std::vector<std::optional<SamplePoint>>(count), std::vector<Vec3>(count),
+                         std::vector<LuxelState>(count, LuxelState::Unmapped)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const Luxel& lx = raw.luxel(x, y);
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+            if (!lx.mapped) continue;
+            samples.normals[i] = lx.normal;
+            samples.points[i] = sampler.samplePoint(lx);
+            samples.states[i] = samples.points[i] ? LuxelState::Mapped : LuxelState::Occluded;
+        }
+    if (raw.planar && raw.axisNum >= 0) mapLuxelRings(sampler, raw, samples);
+    return samples;
 }
 
 }  // namespace
@@ -566,27 +586,12 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
     // Sample points of every super luxel (an earlier pass's, when given): each lit one starts at
     // the ambient light.
     const Vec3 ambient = pass.direct ? surfaceAmbient(ctx, surfaceNum) : Vec3{};
+    const std::shared_ptr<const LuxelSamples> samples =
+        reuse ? previous->samples : std::make_shared<const LuxelSamples>(placeSamples(sampler, raw));
+    const std::vector<std::optional<SamplePoint>>& points = samples->points;
+    const std::vector<Vec3>& superNormals = samples->normals;
     LuxelImage total(w, h);
-    std::vector<std::optional<SamplePoint>> points;
-    std::vector<Vec3> superNormals;
-    if (reuse) {
-        points = previous->samples->points;
-        superNormals = previous->samples->normals;
-        total.state = previous->samples->states;
-    } else {
-        points.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
-        superNormals.resize(points.size());
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const Luxel& lx = raw.luxel(x, y);
-                const size_t i = total.index(x, y);
-                if (!lx.mapped) continue;
-                superNormals[i] = lx.normal;
-                points[i] = sampler.samplePoint(lx);
-                total.state[i] = points[i] ? LuxelState::Mapped : LuxelState::Occluded;
-            }
-        if (raw.planar && raw.axisNum >= 0) mapLuxelRings(sampler, raw, points, superNormals, total, ambient);
-    }
+    total.state = samples->states;
     Bounds bounds;
     for (size_t i = 0; i < points.size(); ++i)
         if (points[i]) {
@@ -594,8 +599,7 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             bounds.add(points[i]->origin);
             ++result.luxelCount;
         }
-    if (pass.keepSamples)
-        result.samples = std::make_shared<const LuxelSamples>(LuxelSamples{points, superNormals, total.state});
+    if (pass.keepSamples) result.samples = samples;
 
     const std::span<const int> groupClusters =
         size_t(surfaceNum) < ctx.lightmapGroupClusters.size()
