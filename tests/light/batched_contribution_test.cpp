@@ -112,11 +112,13 @@ TEST(BatchedPointLights, SamplesMatchOneAtATime) {
         env.tree = world.tree.get();
         env.settings.ignoreNear = ignoreNear;
         env.settings.faster = ignoreNear == 1.5f;  // area lights as inverse square
+        env.settings.lightAngleHL = ignoreNear == 40.0f;
         env.rayMask = 5;
         for (const Light& base : lights) {
             Light light = base;
-            // The light on a sample point (zero distance) once.
+            // A spot and a point light on a sample point (zero distance).
             if (&base == &lights[3]) light.origin = points[0]->origin;
+            if (&base == &lights[2]) light.origin = points[6]->origin;
             const float envelope = &base == &lights[1] ? 90.0f : 1e9f;
             std::vector<ShadowRay> oneRays, batchRays;
             std::vector<size_t> oneTraced, batchTraced;
@@ -216,6 +218,58 @@ TEST(BatchedPointLights, GridPointsMatchOneAtATime) {
             }
         }
     }
+}
+
+// Points on the edges the four-lane path must decide as the one-point functions do: a luxel the
+// light grazes (incidence 0.0005, which half-Lambert leaves dark) and points exactly at the
+// envelope's distance (dark for luxels, lit for grid points), each in a group of four.
+TEST(BatchedPointLights, LanesKeepTheEdgesOfTheOnePointFunctions) {
+    World world;
+    Light light;
+    light.origin = {0, 0, 10};
+    light.photons = 300 * 7500.0f;
+    light.cluster = 0;
+    const std::vector<Vec3> spots = {{1000, 0, 9.5f}, {30, 40, 10}, {0, 10, 10}, {-8, -6, 0}};
+    std::vector<std::optional<SamplePoint>> points;
+    for (const Vec3 p : spots) points.push_back(SamplePoint{p, {0, 0, 1}, 0, false});
+    points[1]->normal = {-0.6f, -0.8f, 0};
+    points.push_back(SamplePoint{{5, 5, 0}, {0, 0, 1}, 0, false});
+    std::vector<uint32_t> which{0, 1, 2, 3, 4};
+    for (const bool halfLambert : {false, true})
+        for (const float envelope : {50.0f, 1e9f}) {
+            LightingEnv env;
+            env.scene = world.scene.get();
+            env.tree = world.tree.get();
+            env.settings.lightAngleHL = halfLambert;
+            std::vector<ShadowRay> rays;
+            env.deferredRays = &rays;
+            std::vector<Vec3> out(points.size()), expected(points.size());
+            std::vector<size_t> traced;
+            lightToSamples(light, env, envelope, points, which, out, nullptr, traced);
+            for (uint32_t i : which) {
+                if (std::optional<LightContribution> c = lightToSample(light, *points[i], env, envelope))
+                    expected[i] = c->color;
+            }
+            for (uint32_t i : which) EXPECT_TRUE(sameBits(expected[i], out[i])) << i << " hl " << halfLambert;
+            // Grazed, 1000 units away: lit by Lambert within reach, never by half-Lambert.
+            EXPECT_EQ(out[0] == Vec3{}, halfLambert || envelope == 50.0f);
+            EXPECT_EQ(out[1] == Vec3{}, envelope == 50.0f);  // at the envelope
+
+            std::vector<Vec3> origins(spots);
+            origins.push_back({5, 5, 0});
+            std::vector<int> clusters(origins.size(), 0);
+            std::vector<std::optional<LightContribution>> grid(origins.size());
+            std::vector<int32_t> rayOf(origins.size(), -1);
+            lightToGridPoints(light, env, envelope, origins, clusters, which, grid, rayOf);
+            for (uint32_t p : which) {
+                const std::optional<LightContribution> one = lightToGridPoint(light, origins[p], 0, env, envelope);
+                ASSERT_EQ(one.has_value(), grid[p].has_value()) << p;
+                if (one) {
+                    EXPECT_TRUE(sameBits(one->color, grid[p]->color)) << p;
+                }
+            }
+            EXPECT_TRUE(grid[1].has_value());  // the grid keeps a point at the envelope
+        }
 }
 
 TEST(BatchedPointLights, WhichLightsAndEnvironmentsTakeTheBatch) {

@@ -133,6 +133,46 @@ TEST(TraceScene, SunOnlyThroughItsOwnSky) {
     EXPECT_EQ(scene.transmission({0, 0, 0}, {0, 0, 600}), (Vec3{0, 0, 0}));
 }
 
+// Sky surfaces stop point-light segments of the receivers their shadow group shadows, batched or
+// one by one, while sun rays still end at them: with every sky in one group they are also in the
+// casters' scene under a bit of their own, with skies in two groups they are asked apart.
+TEST(TraceScene, SkyStopsSegmentsOfItsGroupAndLetsSunRaysReachIt) {
+    LightingShader sky;
+    sky.sky = true;
+    for (const int wallGroup : {4, 1}) {
+        SceneSurface ceiling = quad({-1000, -1000, 500}, {2000, 0, 0}, {0, 2000, 0}, &sky, 0);
+        ceiling.castShadows = 4;
+        SceneSurface wall = quad({500, -1000, -1000}, {0, 2000, 0}, {0, 0, 1400}, &sky, 0);
+        wall.castShadows = wallGroup;
+        SceneSurface other = quad({-1000, 700, -1000}, {2000, 0, 0}, {0, 0, 2000});
+        other.castShadows = 2;
+        TraceScene scene({ceiling, wall, other}, {});
+        const Vec3 from{0, 0, 0}, above{0, 0, 600}, beside{600, 0, 0};
+        for (const int receive : {1, 4, 2}) {
+            const uint32_t mask = scene.receiverMask(receive);
+            const Vec3 upExpected = receive == 4 ? Vec3{} : Vec3{1, 1, 1};
+            const Vec3 sideExpected = receive == 4 || wallGroup == 1 ? Vec3{} : Vec3{1, 1, 1};
+            EXPECT_EQ(scene.transmission(from, above, 0, mask), upExpected) << receive << " " << wallGroup;
+            EXPECT_EQ(scene.transmission(from, beside, 0, mask), sideExpected) << receive << " " << wallGroup;
+            std::vector<ShadowRay> rays{*TraceScene::segmentRay(from, above), *TraceScene::segmentRay(from, beside),
+                                        TraceScene::skyRay(from, {0, 0, 1}, 0), TraceScene::skyRay(from, {1, 0, 0}, 0)};
+            for (ShadowRay& r : rays) r.mask = mask;
+            std::vector<Vec3> out(rays.size());
+            scene.traceBatch(rays, out);
+            EXPECT_EQ(out[0], upExpected) << receive << " " << wallGroup;
+            EXPECT_EQ(out[1], sideExpected) << receive << " " << wallGroup;
+            // Sun rays see the skies of the receiver's groups as one by one; a receiver of every
+            // group reaches both skies.
+            EXPECT_EQ(out[2], scene.skyTransmission(from, {0, 0, 1}, 0, 0, mask)) << receive << " " << wallGroup;
+            EXPECT_EQ(out[3], scene.skyTransmission(from, {1, 0, 0}, 0, 0, mask)) << receive << " " << wallGroup;
+            if (receive == 4) {
+                EXPECT_EQ(out[2], (Vec3{1, 1, 1})) << wallGroup;
+                EXPECT_EQ(out[3], (Vec3{1, 1, 1})) << wallGroup;
+            }
+        }
+    }
+}
+
 TEST(TraceScene, OpaqueRoofBlocksSun) {
     LightingShader sky;
     sky.sky = true;

@@ -1,6 +1,8 @@
 // Light contributions to luxels, vertices and grid points (see light_contribution.h).
 #include "light_contribution.h"
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -404,6 +406,121 @@ bool samplesBatchable(const Light& light, const LightingEnv& env) {
 
 namespace {
 
+// A point light (not a spot) at four points at once, by SSE lanes: the scalar functions' float
+// operations in their order, so that each lane's amount, direction and distance are theirs to the
+// bit. The masks say which lanes face the light, lie within its reach with a positive distance,
+// and carry light above the tolerances; a lane the lanes do not settle (a light on the point, a
+// NaN) is left to the scalar code.
+struct PointLightLanes {
+    alignas(16) float dist[4], dirX[4], dirY[4], dirZ[4], add[4];
+    int facing = 0;  // bit per lane: lit from the light's side
+    int settled = 0; // bit per lane: the lanes' answer holds (else the scalar code decides)
+    int lit = 0;     // bit per lane: a contribution (before PVS and occlusion)
+};
+
+[[gnu::always_inline]] inline __m128 dot3(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+}
+
+// The light's distance and direction from four points (length and toLight / dist), and the
+// distance clampedDistance makes of it.
+struct DistanceLanes {
+    __m128 dist, dirX, dirY, dirZ, clamped;
+};
+[[gnu::always_inline]] inline DistanceLanes distanceLanes(const Light& light, __m128 px, __m128 py, __m128 pz) {
+    const __m128 tx = _mm_sub_ps(_mm_set1_ps(light.origin.x), px);
+    const __m128 ty = _mm_sub_ps(_mm_set1_ps(light.origin.y), py);
+    const __m128 tz = _mm_sub_ps(_mm_set1_ps(light.origin.z), pz);
+    DistanceLanes d;
+    d.dist = _mm_sqrt_ps(dot3(tx, ty, tz, tx, ty, tz));
+    d.dirX = _mm_div_ps(tx, d.dist), d.dirY = _mm_div_ps(ty, d.dist), d.dirZ = _mm_div_ps(tz, d.dist);
+    const __m128 extra = _mm_set1_ps(light.extraDist);
+    d.clamped = _mm_max_ps(_mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(d.dist, d.dist), _mm_mul_ps(extra, extra))),
+                           _mm_set1_ps(kMinDistance));
+    return d;
+}
+
+// The lanes' verdicts and values: `beyond` the lanes out of reach, `ordered` those free of NaNs.
+[[gnu::always_inline]] inline void settleLanes(const Light& light, bool fast, const DistanceLanes& d, __m128 add,
+                                               __m128 beyond, __m128 ordered, PointLightLanes& lanes) {
+    const __m128 zero = _mm_setzero_ps();
+    __m128 above = _mm_cmpnle_ps(add, zero);
+    if (fast) above = _mm_and_ps(above, _mm_cmpnle_ps(add, _mm_set1_ps(light.falloffTolerance)));
+    const __m128 positive = _mm_cmpgt_ps(d.dist, zero);
+    lanes.settled = _mm_movemask_ps(_mm_or_ps(beyond, _mm_and_ps(positive, ordered)));
+    lanes.lit = _mm_movemask_ps(_mm_andnot_ps(beyond, _mm_and_ps(positive, above)));
+    _mm_store_ps(lanes.dist, d.dist);
+    _mm_store_ps(lanes.dirX, d.dirX);
+    _mm_store_ps(lanes.dirY, d.dirY);
+    _mm_store_ps(lanes.dirZ, d.dirZ);
+    _mm_store_ps(lanes.add, add);
+}
+
+// pointLightAdd at four sample points.
+[[gnu::always_inline]] inline void pointLightLanes(const Light& light, const ContributionSettings& settings,
+                                                   float envelope, const SamplePoint* const* samples,
+                                                   PointLightLanes& lanes) {
+    alignas(16) float px[4], py[4], pz[4], nx[4], ny[4], nz[4];
+    alignas(16) uint32_t twoSided[4];
+    for (int l = 0; l < 4; ++l) {
+        const SamplePoint& s = *samples[l];
+        px[l] = s.origin.x, py[l] = s.origin.y, pz[l] = s.origin.z;
+        nx[l] = s.normal.x, ny[l] = s.normal.y, nz[l] = s.normal.z;
+        twoSided[l] = s.twoSided ? ~0u : 0u;
+    }
+    const __m128 Px = _mm_load_ps(px), Py = _mm_load_ps(py), Pz = _mm_load_ps(pz);
+    const __m128 Nx = _mm_load_ps(nx), Ny = _mm_load_ps(ny), Nz = _mm_load_ps(nz);
+    const __m128 both = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(twoSided)));
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    // Behind a one-sided surface: dot(light, n) - dot(p, n) < 0.
+    const __m128 Lx = _mm_set1_ps(light.origin.x), Ly = _mm_set1_ps(light.origin.y), Lz = _mm_set1_ps(light.origin.z);
+    const __m128 behind = _mm_cmplt_ps(_mm_sub_ps(dot3(Lx, Ly, Lz, Nx, Ny, Nz), dot3(Px, Py, Pz, Nx, Ny, Nz)), zero);
+    lanes.facing = _mm_movemask_ps(_mm_or_ps(both, _mm_andnot_ps(behind, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
+
+    const DistanceLanes d = distanceLanes(light, Px, Py, Pz);
+    const __m128 beyond = _mm_cmpge_ps(d.dist, _mm_set1_ps(envelope));  // dist >= envelope: no light
+    const __m128 incidence = dot3(Nx, Ny, Nz, d.dirX, d.dirY, d.dirZ);
+    __m128 angle = one;
+    if (light.angleAttenuation) {
+        angle = incidence;
+        const __m128 flip = _mm_and_ps(both, _mm_cmplt_ps(angle, zero));
+        angle = _mm_or_ps(_mm_and_ps(flip, _mm_sub_ps(zero, angle)), _mm_andnot_ps(flip, angle));
+        if (settings.lightAngleHL) {
+            const __m128 half = _mm_set1_ps(0.5f);
+            __m128 hl = _mm_add_ps(_mm_mul_ps(_mm_min_ps(angle, one), half), half);
+            hl = _mm_mul_ps(hl, hl);
+            angle = _mm_and_ps(_mm_cmpgt_ps(angle, _mm_set1_ps(0.001f)), hl);
+        }
+    }
+    if (light.angleScale != 0) angle = _mm_min_ps(_mm_div_ps(angle, _mm_set1_ps(light.angleScale)), one);
+    const __m128 photons = _mm_set1_ps(light.photons);
+    const __m128 add =
+        light.linear
+            ? _mm_max_ps(_mm_sub_ps(_mm_mul_ps(_mm_mul_ps(angle, photons), _mm_set1_ps(kLinearScale)),
+                                    _mm_mul_ps(d.clamped, _mm_set1_ps(light.fade))),
+                         zero)
+            : _mm_max_ps(_mm_mul_ps(_mm_div_ps(photons, _mm_mul_ps(d.clamped, d.clamped)), angle), zero);
+    // std::min / std::max keep a NaN where the SSE forms drop it: lanes with one go to the scalar code.
+    const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(incidence, add), _mm_cmpord_ps(d.clamped, angle));
+    settleLanes(light, light.fast || settings.forceFast, d, add, beyond, ordered, lanes);
+}
+
+// lightToGridPointsOf's point light (pointLightAtGridPoint) at four grid points.
+[[gnu::always_inline]] inline void pointLightGridLanes(const Light& light, float envelope, bool fast,
+                                                       const Vec3* const* origins, PointLightLanes& lanes) {
+    alignas(16) float px[4], py[4], pz[4];
+    for (int l = 0; l < 4; ++l) px[l] = origins[l]->x, py[l] = origins[l]->y, pz[l] = origins[l]->z;
+    const __m128 zero = _mm_setzero_ps();
+    const DistanceLanes d = distanceLanes(light, _mm_load_ps(px), _mm_load_ps(py), _mm_load_ps(pz));
+    const __m128 beyond = _mm_cmpgt_ps(d.dist, _mm_set1_ps(envelope));  // dist > envelope: no light
+    const __m128 add = light.linear ? _mm_max_ps(_mm_sub_ps(_mm_set1_ps(light.photons * kLinearScale),
+                                                            _mm_mul_ps(d.clamped, _mm_set1_ps(light.fade))),
+                                                 zero)
+                                    : _mm_div_ps(_mm_set1_ps(light.photons), _mm_mul_ps(d.clamped, d.clamped));
+    const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(d.dirX, d.dirY), _mm_cmpord_ps(d.dirZ, d.clamped));
+    settleLanes(light, fast, d, add, beyond, ordered, lanes);
+}
+
 template <bool area>
 void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope,
                       std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
@@ -411,7 +528,42 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
     // The PVS verdict of the last cluster asked: runs of samples share one.
     int lastCluster = -2;
     bool lastCulled = false;
-    for (const uint32_t i : which) {
+    size_t first = 0;
+    if (!area && light.type == LightType::Point) {
+        // Four samples at a time; a lane the lanes leave open takes the scalar path below.
+        PointLightLanes lanes;
+        const SamplePoint* four[4];
+        for (; first + 4 <= which.size(); first += 4) {
+            for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
+            pointLightLanes(light, env.settings, envelope, four, lanes);
+            for (int l = 0; l < 4; ++l) {
+                const int bit = 1 << l;
+                if (!(lanes.facing & bit)) continue;
+                const uint32_t i = which[first + size_t(l)];
+                const SamplePoint& sample = *four[l];
+                if (!(lanes.settled & bit)) {
+                    lightToSamplesOf<area>(light, env, envelope, points, std::span<const uint32_t>(&which[first + size_t(l)], 1),
+                                           out, dirs, traced);
+                    continue;
+                }
+                if (!(lanes.lit & bit)) continue;
+                if (sample.cluster != lastCluster) {
+                    lastCluster = sample.cluster;
+                    lastCulled = pvsCulledInline(light, sample.cluster, env);
+                }
+                if (lastCulled) continue;
+                const Vec3 color = light.color * lanes.add[l];
+                if (color == Vec3{}) continue;
+                const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
+                const DeferredRay ray = deferShadowRay(env, sample.origin, light.origin, dir, lanes.dist[l]);
+                if (ray == DeferredRay::Blocked) continue;
+                if (ray == DeferredRay::Queued) traced.push_back(i);
+                out[i] = color;
+                if (dirs) dirs[i] = dir;
+            }
+        }
+    }
+    for (const uint32_t i : which.subspan(first)) {
         const SamplePoint& sample = *points[i];
         const Vec3 p = sample.origin, n = sample.normal;
         if (!sample.twoSided && dot(light.origin, n) - dot(p, n) < 0) continue;  // behind the surface
@@ -461,7 +613,40 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
     const bool fast = light.fast || env.settings.forceFast;
     int lastCluster = -2;
     bool lastCulled = false;
-    for (const uint32_t p : which) {
+    size_t first = 0;
+    if (!area && light.type == LightType::Point) {
+        // Four points at a time; a lane the lanes leave open takes the scalar path below.
+        PointLightLanes lanes;
+        const Vec3* four[4];
+        for (; first + 4 <= which.size(); first += 4) {
+            for (int l = 0; l < 4; ++l) four[l] = &origins[which[first + size_t(l)]];
+            pointLightGridLanes(light, envelope, fast, four, lanes);
+            for (int l = 0; l < 4; ++l) {
+                const int bit = 1 << l;
+                const uint32_t p = which[first + size_t(l)];
+                if (!(lanes.settled & bit)) {
+                    lightToGridPointsOf<area>(light, env, envelope, origins, clusters,
+                                              std::span<const uint32_t>(&which[first + size_t(l)], 1), out, rayOf);
+                    continue;
+                }
+                if (!(lanes.lit & bit)) continue;
+                if (clusters[p] != lastCluster) {
+                    lastCluster = clusters[p];
+                    lastCulled = pvsCulledInline(light, clusters[p], env);
+                }
+                if (lastCulled) continue;
+                const Vec3 color = light.color * lanes.add[l];
+                if (color == Vec3{}) continue;
+                const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
+                const int32_t next = int32_t(env.deferredRays->size());
+                const DeferredRay ray = deferShadowRay(env, *four[l], light.origin, dir, lanes.dist[l]);
+                if (ray == DeferredRay::Blocked) continue;
+                if (ray == DeferredRay::Queued) rayOf[p] = next;
+                out[p] = LightContribution{color, dir, light.style};
+            }
+        }
+    }
+    for (const uint32_t p : which.subspan(first)) {
         if (clusters[p] != lastCluster) {
             lastCluster = clusters[p];
             lastCulled = pvsCulledInline(light, clusters[p], env);

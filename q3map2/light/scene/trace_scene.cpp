@@ -218,10 +218,10 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             std::find(groupOfBit_.begin(), groupOfBit_.end(), group) == groupOfBit_.end())
             groupOfBit_.push_back(group);
     }
-    for (const SceneSurface& s : surfaces) {
-        if (!castsShadow(s, options)) continue;
+    // A caster's triangles as an Embree geometry with the given mask (its index buffer returned too).
+    auto newTriangles = [this](const SceneSurface& s, uint32_t mask, const unsigned*& indices) {
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryMask(geom, groupBit(s.castShadows));
+        rtcSetGeometryMask(geom, mask);
         const size_t numVerts = s.xyz.size();
         const size_t numTris = s.triangles.size() / 3;
         auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -233,6 +233,31 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             uint32_t idx = s.triangles[i];
             ib[i] = idx < numVerts ? idx : 0;
         }
+        indices = ib;
+        return geom;
+    };
+    // Point-light segments meet sky surfaces as walls. When every sky caster is in one shadow group
+    // and a mask bit is free, the sky surfaces also join the casters' scene under that bit alone,
+    // which only segment rays carry: one traversal then answers for both.
+    std::vector<const SceneSurface*> skyCasters;
+    std::optional<uint32_t> skyGroup;
+    bool oneSkyGroup = true;
+    for (const SceneSurface& s : surfaces) {
+        if (!castsShadow(s, options) || !(s.shader && s.shader->sky)) continue;
+        skyCasters.push_back(&s);
+        if (skyGroup && *skyGroup != groupBit(s.castShadows)) oneSkyGroup = false;
+        skyGroup = groupBit(s.castShadows);
+    }
+    if (skyGroup && oneSkyGroup && *skyGroup != 0 && groupOfBit_.size() < 32) {
+        skySegmentBit_ = 1u << groupOfBit_.size();
+        skySegmentGroup_ = *skyGroup;
+    }
+    for (const SceneSurface& s : surfaces) {
+        if (!castsShadow(s, options)) continue;
+        const unsigned* ib = nullptr;
+        RTCGeometry geom = newTriangles(s, groupBit(s.castShadows), ib);
+        const size_t numVerts = s.xyz.size();
+        const size_t numTris = s.triangles.size() / 3;
         Record rec;
         rec.shader = s.shader;
         rec.sky = s.shader && s.shader->sky;
@@ -252,6 +277,21 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
         if (id != records.size()) throw CompileError("embree: unexpected geometry numbering");
         records.push_back(std::move(rec));
     }
+    casters_ = records_.size() + skyRecords_.size();
+    if (skySegmentBit_ != 0)
+        for (const SceneSurface* s : skyCasters) {
+            const unsigned* ib = nullptr;
+            RTCGeometry geom = newTriangles(*s, skySegmentBit_, ib);
+            rtcCommitGeometry(geom);
+            const unsigned id = rtcAttachGeometry(embree_->scene, geom);
+            rtcReleaseGeometry(geom);
+            if (id != records_.size()) throw CompileError("embree: unexpected geometry numbering");
+            Record rec;
+            rec.shader = s->shader;
+            rec.sky = true;
+            rec.skyIndex = s->skyIndex;
+            records_.push_back(std::move(rec));
+        }
     rtcCommitScene(embree_->scene);
     rtcCommitScene(embree_->skyScene);
     if (!shell_.empty() && solidBetweenInHull_)
@@ -333,7 +373,7 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};  // escapes without meeting the sky
         if (r.skyIndex >= 0 && skyRecords_[rh.hit.geomID].skyIndex != r.skyIndex) return {};
         tfar = rh.ray.tfar;  // the structural solid test waits until the casters leave it open
-    } else if (!skyRecords_.empty()) {
+    } else if (!skyRecords_.empty() && skySegmentBit_ == 0) {
         RTCRay ray = makeRay(r, tfar);
         rtcOccluded1(embree_->skyScene, &plain, &ray);
         if (ray.tfar < 0) return {};  // sky surfaces block point-light rays like walls
@@ -344,6 +384,7 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
     ctx.records = &records_;
     ctx.hits = &hits;
     RTCRay ray = makeRay(r, tfar);
+    ray.mask = casterMask(r.mask, r.toSky);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
     // Open rays still stop at structural solid: sun rays up to their sky, the others to their end.
@@ -507,7 +548,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
         }
         if (!r.toSky) {
             setRay(occlusionBuffer[numOcclusion++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
-                   r.mask);
+                   casterMask(r.mask, false));
         } else if (!skyRecords_.empty()) {
             setRayHit(toSkyBuffer[numToSky++], r.from, r.direction, r.tnear, r.tfar, static_cast<unsigned>(i),
                       r.mask);
@@ -521,7 +562,8 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
             const int wanted = rays[rh.ray.id].skyIndex;
             if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escapes without meeting the sky
             if (wanted >= 0 && skyRecords_[rh.hit.geomID].skyIndex != wanted) continue;
-            occlusionBuffer[numOcclusion++] = rh.ray;  // tfar now ends at the sky surface
+            occlusionBuffer[numOcclusion] = rh.ray;  // tfar now ends at the sky surface
+            occlusionBuffer[numOcclusion++].mask = casterMask(rh.ray.mask, true);
         }
     }
 
@@ -534,7 +576,7 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
-    if (!skyRecords_.empty() && numSegments > 0) {
+    if (!skyRecords_.empty() && skySegmentBit_ == 0 && numSegments > 0) {
         // Sky surfaces block point-light segments like walls: asked only of the segments the casters
         // leave open (a blocked ray's translucent crossings no longer matter).
         uint8_t probed[kBatchChunk];

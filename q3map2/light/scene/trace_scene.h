@@ -163,7 +163,7 @@ public:
     // group 1); beyond 31 other groups, the last bit is shared.
     uint32_t groupBit(int castShadows) const;
 
-    size_t casterCount() const { return records_.size() + skyRecords_.size(); }
+    size_t casterCount() const { return casters_; }
     uint64_t raysTraced() const;
 
     // Per-geometry data read by the Embree filter callback.
@@ -183,12 +183,21 @@ private:
     Vec3 traceSingle(const ShadowRay& ray) const;  // traceOne's work, not counted
     void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent, bool axialRaysAlone) const;
     void countRays(size_t n) const;
+    // A ray's mask in the casters' scene: segment rays of a receiver that the sky's group shadows
+    // meet the sky surfaces there (skySegmentBit_), sun rays never do.
+    uint32_t casterMask(uint32_t mask, bool toSky) const {
+        const uint32_t groups = mask & ~skySegmentBit_;
+        return toSky || !(mask & skySegmentGroup_) ? groups : groups | skySegmentBit_;
+    }
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
     std::vector<Record> records_;     // casters other than sky, indexed by Embree geometry id
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
+    size_t casters_ = 0;              // surfaces that cast shadows (sky surfaces once)
+    uint32_t skySegmentBit_ = 0;      // mask of the sky surfaces' copies in the casters' scene (0: none)
+    uint32_t skySegmentGroup_ = 0;    // the group bit of every sky surface, when they have copies
     std::function<bool(Vec3, Vec3)> solidBetween_;
     std::function<bool(Vec3, Vec3)> skySolidBetween_;
     std::function<HullVerdict(std::span<const Vec3>)> hullClearOfSolid_;
