@@ -111,6 +111,45 @@ TEST(BspTreeRealData, CompactWalksMatchThePlainOnes) {
     }
 }
 
+// A hinted point walk gives the walk from the root's leaf, whatever the hint: points wandering in
+// small steps (the hint mostly right), points within 0.1 of the lattice's axial planes (where the
+// walk may take either side) and hints picked at random.
+TEST(BspTreeRealData, HintedWalksMatchTheWalkFromTheRoot) {
+    for (const std::string name : {"oa_dm4", "oacmpdm1"}) {
+        const bsp::Bsp b = bsp::readBsp(test::realBsp(name));
+        const BspTree tree(b);
+        ASSERT_TRUE(tree.usesCompactTree()) << name;
+        const bsp::Model& world = b.models[0];
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<float> unit(0, 1), step(-24, 24);
+        const float nearPlane[] = {0.0f, 0.05f, -0.05f, 0.1f, -0.1f, 0.11f, -0.11f, 0.125f};
+        BspTree::LeafHint hint;
+        Vec3 p{};
+        int same = 0;
+        for (int i = 0; i < 60000; ++i) {
+            if (i % 500 == 0) {
+                for (int axis = 0; axis < 3; ++axis)
+                    p[axis] = world.mins[axis] + unit(rng) * (world.maxs[axis] - world.mins[axis]);
+            } else {
+                p += Vec3{step(rng), step(rng), step(rng)} * (i % 7 == 0 ? 0.01f : 0.25f);
+            }
+            Vec3 q = p;
+            if (i % 3 == 0) {
+                const int axis = int(rng() % 3);
+                q[axis] = std::round(q[axis] / 8) * 8 + nearPlane[rng() % 8];
+            }
+            if (i % 97 == 0) hint.leaf = int32_t(rng() % b.leafs.size());
+            const int before = hint.leaf;
+            const int leaf = tree.leafForPoint(q, hint);
+            ASSERT_EQ(leaf, tree.leafForPoint(q)) << name << " " << i;
+            same += leaf == before;
+            BspTree::LeafHint other = hint;
+            ASSERT_EQ(tree.clusterForPointExt(q, 0.125f, other), tree.clusterForPointExt(q, 0.125f)) << name << " " << i;
+        }
+        EXPECT_GT(same, 30000) << name;  // the hint was mostly the answer
+    }
+}
+
 // On real maps, every segment whose walk enters structural solid meets a cell of the solid shell,
 // and most segments that stay open meet none (so their walks are saved).
 TEST(BspTreeRealData, SolidShellHoldsEveryWalkIntoSolid) {

@@ -107,8 +107,11 @@ struct LuxelSampler {
     // q3map2 ClusterForPointExtFilter: the cluster of a point out of solid that is one of the
     // surface's clusters or sees one of them; -1 otherwise.
     int freeCluster(Vec3 point, float epsilon = kLuxelEpsilon) const {
-        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, epsilon), clusters);
+        return clusterSeenBySurface(*ctx.tree, ctx.tree->clusterForPointExt(point, epsilon, leafHint), clusters);
     }
+    // The leaf of the last point asked (a sampler serves one lightmap on one thread; its points
+    // lie close together). Only a shortcut: the answers do not depend on it.
+    mutable BspTree::LeafHint leafHint{};
 
     // The luxel's sample point; in solid, the nudges in q3map2's order, then the surface point under
     // the luxel pushed off along its normal; nullopt when all of them are in solid.
@@ -144,9 +147,9 @@ struct LuxelSampler {
         SamplePoint p{raw.origin + raw.vecs[0] * s + raw.vecs[1] * t + offset, normal, -1, twoSided};
         p.origin[raw.axisNum] += raw.planeNormal[raw.axisNum] < 0.0f ? -kDefaultSampleOffset : kDefaultSampleOffset;
         if (!ctx.tree || ctx.bsp.nodes.empty()) return p;
-        int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon);
+        int cluster = ctx.tree->clusterForPointExt(p.origin, kLuxelEpsilon, leafHint);
         for (size_t k = 0; k < planarNudges.size() && cluster < 0; ++k) {
-            cluster = ctx.tree->clusterForPointExt(p.origin + planarNudges[k], kLuxelEpsilon);
+            cluster = ctx.tree->clusterForPointExt(p.origin + planarNudges[k], kLuxelEpsilon, leafHint);
             if (cluster >= 0) p.origin += planarNudges[k];
         }
         if (cluster < 0) return std::nullopt;

@@ -101,6 +101,68 @@ void BspTree::buildCompactTree() {
     leafCluster_.resize(numLeafs);
     for (size_t i = 0; i < numLeafs; ++i) leafCluster_[i] = bsp_.leafs[i].cluster;
     compact_ = compactCopy(bsp_, [](int32_t child) { return child >= 0; }, [](int32_t child) { return child; });
+    buildLeafRegions();
+}
+
+void BspTree::buildLeafRegions() {
+    leafRegions_.assign(bsp_.leafs.size(), LeafRegion{});
+    std::vector<uint8_t> reached(bsp_.leafs.size(), 0);
+    // Depth first with the path: (node, side taken) pairs from the root.
+    std::vector<RegionStep> path;
+    struct Visit {
+        int32_t node;
+        size_t depth;
+        int32_t side;  // the side of the parent that leads here
+    };
+    std::vector<Visit> stack{{0, 0, -1}};
+    while (!stack.empty()) {
+        const Visit v = stack.back();
+        stack.pop_back();
+        path.resize(v.depth);
+        if (v.depth > 0) path.back().side = v.side;
+        if (v.node >= 0) {
+            path.push_back({v.node, 0});
+            for (int32_t side = 1; side >= 0; --side)
+                stack.push_back({compact_[size_t(v.node)].children[side], v.depth + 1, side});
+            continue;
+        }
+        const size_t leaf = size_t(-(v.node + 1));
+        if (leaf >= bsp_.leafs.size() || reached[leaf]++) {
+            if (leaf < bsp_.leafs.size()) leafRegions_[leaf].usable = false;  // two paths: no region
+            continue;
+        }
+        LeafRegion& region = leafRegions_[leaf];
+        const bsp::Leaf& l = bsp_.leafs[leaf];
+        for (int axis = 0; axis < 3; ++axis) region.lo[axis] = l.mins[axis], region.hi[axis] = l.maxs[axis];
+        region.firstStep = uint32_t(regionSteps_.size());
+        region.usable = true;
+        for (const RegionStep& step : path) {
+            const int side = boxSide(compact_[size_t(step.node)], region.lo, region.hi);
+            if (side == step.side) continue;  // every point of the box walks this way
+            if (side != 2) region.usable = false;  // the box lies beyond the path
+            regionSteps_.push_back(step);
+        }
+        region.numSteps = uint32_t(regionSteps_.size()) - region.firstStep;
+    }
+}
+
+int BspTree::leafForPoint(Vec3 point, LeafHint& hint) const {
+    if (hint.leaf >= 0 && size_t(hint.leaf) < leafRegions_.size()) {
+        const LeafRegion& r = leafRegions_[size_t(hint.leaf)];
+        const double x = point.x, y = point.y, z = point.z;
+        if (r.usable && x >= r.lo[0] && x <= r.hi[0] && y >= r.lo[1] && y <= r.hi[1] && z >= r.lo[2] && z <= r.hi[2]) {
+            const WalkPoint p(point);
+            bool straight = true;
+            for (uint32_t k = r.firstStep; k < r.firstStep + r.numSteps && straight; ++k) {
+                const double d = nodeDistance(compact_[size_t(regionSteps_[k].node)], p);
+                straight = regionSteps_[k].side == 0 ? d > 0.1 : d < -0.1;
+            }
+            if (straight) return hint.leaf;
+        }
+    }
+    const int leaf = leafForPoint(point);
+    hint.leaf = leaf;
+    return leaf;
 }
 
 bool BspTree::segmentCrossesSolid(Vec3 from, Vec3 to) const { return segmentSolidEntry(from, to).has_value(); }
@@ -343,6 +405,10 @@ int BspTree::numClusters() const { return numClusters_; }
 
 int BspTree::clusterForPointExt(Vec3 point, float epsilon) const {
     return clusterInLeaf(leafForPoint(point), point, epsilon);
+}
+
+int BspTree::clusterForPointExt(Vec3 point, float epsilon, LeafHint& hint) const {
+    return clusterInLeaf(leafForPoint(point, hint), point, epsilon);
 }
 
 int BspTree::clusterInLeaf(int leafNum, Vec3 point, float epsilon) const {

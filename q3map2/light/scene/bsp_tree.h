@@ -56,6 +56,15 @@ public:
     // and keep it when its leaf has a cluster (q3map2 PointInLeafNum). Without nodes: leaf 0, or -1
     // when there are no leafs either.
     int leafForPoint(Vec3 point) const;
+    // A leaf to try first, the one its holder found last: a caller asking about nearby points in
+    // turn (the sample points of a lightmap) keeps one. The answers never depend on it.
+    struct LeafHint {
+        int32_t leaf = -1;
+    };
+    // leafForPoint, the hinted leaf tried first: it is the answer when the point lies in its box
+    // and farther than 0.1 from each plane of its path that crosses the box, on the path's side
+    // (the walk then goes straight to it); else the walk from the root, whose leaf the hint keeps.
+    int leafForPoint(Vec3 point, LeafHint& hint) const;
     // Whether the BSP has a node tree (without one, point-in-solid tests cannot be made).
     bool hasNodes() const { return !bsp_.nodes.empty(); }
     int clusterForPoint(Vec3 point) const;  // -1 outside the world
@@ -109,6 +118,7 @@ public:
     // q3map2 ClusterForPointExt: the point's cluster, -1 outside the world, or -1 - brush when the
     // point is inside an opaque world brush of its leaf (every side plane distance <= epsilon).
     int clusterForPointExt(Vec3 point, float epsilon) const;
+    int clusterForPointExt(Vec3 point, float epsilon, LeafHint& hint) const;
     // Outside the world or inside an opaque brush.
     bool pointInSolid(Vec3 point, float epsilon = 0.0f) const { return clusterForPointExt(point, epsilon) < 0; }
 
@@ -149,6 +159,7 @@ private:
 
     void buildCompactTree();
     void buildLeafSolids();
+    void buildLeafRegions();
     int compactLeafFrom(int node, Vec3 point) const;
     int clusterInLeaf(int leafNum, Vec3 point, float epsilon) const;
     bool leafBrushHoldsBox(int leafNum, const double lo[3], const double hi[3], float epsilon) const;
@@ -177,6 +188,19 @@ private:
     std::vector<CompactNode> compact_;  // the whole node tree for point walks; empty: use the reference walks
     SolidSegmentTree segmentTree_;      // segment walks against leaves outside every cluster
     std::vector<int32_t> leafCluster_;  // per leaf, for the compact walks
+    // Per leaf, for hinted point walks: its box and the nodes of its path whose plane comes within
+    // 0.1 (and a margin) of the box, each with the side the path takes (regionSteps_).
+    struct LeafRegion {
+        double lo[3], hi[3];
+        uint32_t firstStep = 0, numSteps = 0;
+        bool usable = false;
+    };
+    struct RegionStep {
+        int32_t node;
+        int32_t side;
+    };
+    std::vector<LeafRegion> leafRegions_;
+    std::vector<RegionStep> regionSteps_;
     // The opaque brushes listed in each leaf with their side planes inline, in the leaf's order, for
     // clusterInLeaf's point-in-brush tests without chasing leaf brush, brush and side indices.
     struct SidePlane {
