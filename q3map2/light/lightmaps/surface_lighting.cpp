@@ -165,13 +165,13 @@ struct LuxelSampler {
         std::vector<uint32_t> luxels;  // the luxels a batched light is asked about
     };
 
-    // lightAt for the sample points of the tiles `active` (`skip[i]` = leave dark), written to
-    // out[i] (and the direction towards the light to dirs[i] when `dirs` is set); the shadow rays
-    // of the light are traced together as one batch. Entries outside those tiles are not touched.
+    // lightAt for the sample points of the tiles `active` (`skip`, when given: skip[i] = leave
+    // dark), written to out[i] (and the direction towards the light to dirs[i] when `dirs` is set);
+    // the shadow rays of the light are traced together as one batch. Entries outside those tiles
+    // are not touched.
     void lightAll(const Light& light, float envelope, const std::vector<std::optional<SamplePoint>>& points,
-                  const LuxelTiles& tiles,
-                  std::span<const uint32_t> active, const std::vector<uint8_t>& skip, std::vector<Vec3>& out,
-                  std::vector<Vec3>* dirs, Scratch& scratch) const {
+                  const LuxelTiles& tiles, std::span<const uint32_t> active, const std::vector<uint8_t>* skip,
+                  std::vector<Vec3>& out, std::vector<Vec3>* dirs, Scratch& scratch) const {
         std::vector<ShadowRay>& rays = scratch.rays;
         std::vector<size_t>& rayLuxel = scratch.rayLuxel;
         rays.clear();
@@ -181,15 +181,21 @@ struct LuxelSampler {
         if (samplesBatchable(light, deferred)) {
             std::vector<uint32_t>& lit = scratch.luxels;
             lit.clear();
-            tiles.forEachLuxel(active, [&](uint32_t i) {
-                out[i] = Vec3{};
-                if (points[i] && !skip[i]) lit.push_back(i);
-            });
+            for (const uint32_t t : active) {
+                const std::vector<uint32_t>& members = tiles.luxels[t];  // the luxels with a sample point
+                for (const uint32_t i : members) out[i] = Vec3{};
+                if (!skip) {
+                    lit.insert(lit.end(), members.begin(), members.end());
+                    continue;
+                }
+                for (const uint32_t i : members)
+                    if (!(*skip)[i]) lit.push_back(i);
+            }
             lightToSamples(light, deferred, envelope, points, lit, out, dirs ? dirs->data() : nullptr, rayLuxel);
         } else {
             tiles.forEachLuxel(active, [&](uint32_t i) {
                 out[i] = Vec3{};
-                if (!points[i] || skip[i]) return;
+                if (!points[i] || (skip && (*skip)[i])) return;
                 const size_t before = rays.size();
                 std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);
                 const bool traced = rays.size() > before;
@@ -652,8 +658,8 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             for (size_t i = 0; i < points.size(); ++i)
                 skip[i] = target.color[i].x >= 255 && target.color[i].y >= 255 && target.color[i].z >= 255;
         const bool withDirs = pass.deluxe && slot == 0;
-        sampler.lightAll(lt, envelope, points, tiles, active, skip, single.color, withDirs ? &singleDirs : nullptr,
-                         scratch);
+        sampler.lightAll(lt, envelope, points, tiles, active, o.cheap ? &skip : nullptr, single.color,
+                         withDirs ? &singleDirs : nullptr, scratch);
         const int radius = luxelFilterRadius(std::max(shader.lightmapFilterRadius, lt.filterRadius), raw.sampleSize,
                                              raw.superSample, o.filter);
         if (maxLevel == 0 && radius == 0) {
