@@ -58,8 +58,11 @@ SolidShell solidShellOf(const bsp::Model* world, const BspTree& tree) {
         }
         shell.boxes.push_back(b);
         shell.firstPlane.push_back(uint32_t(shell.planes.size()));
+        // The cell's faces come in the order the tree's planes cut it, the deepest last; a segment
+        // that misses the cell mostly leaves it by one of those (the wall it starts beside), and
+        // the clip's answer does not depend on the order: the deepest are asked first.
         const std::vector<ConvexCell::Plane> cellPlanes = c.planes();
-        shell.planes.insert(shell.planes.end(), cellPlanes.begin(), cellPlanes.end());
+        shell.planes.insert(shell.planes.end(), cellPlanes.rbegin(), cellPlanes.rend());
     }
     if (shell.boxes.empty()) return shell;
     shell.firstPlane.push_back(uint32_t(shell.planes.size()));
