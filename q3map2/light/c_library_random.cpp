@@ -1,6 +1,7 @@
 // Jumping ahead in the C library sequence (see c_library_random.h).
 #include "c_library_random.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace q3::light {
@@ -58,8 +59,26 @@ void CLibraryRandom::discard(uint64_t count) {
     // A jump costs a 31 x 31 matrix product per set bit of the count, each as much as stepping
     // a few hundred values: shorter runs are cheaper stepped.
     constexpr uint64_t kStepUpTo = 4096;
-    if (count <= kStepUpTo || count >> kPowers) {
+    if (count < uint64_t(kWords)) {
         for (uint64_t i = 0; i < count; ++i) next();
+        return;
+    }
+    if (count <= kStepUpTo || count >> kPowers) {
+        // Stepped along a line instead of round the ring: value n is the sum of values n - 31 and
+        // n - 3, the line starting with the ring's words oldest first and keeping its last 31
+        // when it is full.
+        constexpr size_t kLine = 512;
+        std::array<uint32_t, kWords + kLine> line;
+        for (int j = 0; j < kWords; ++j) line[size_t(j)] = words_[size_t((front_ + j) % kWords)];
+        for (uint64_t left = count; left > 0;) {
+            const size_t n = size_t(std::min<uint64_t>(left, kLine));
+            for (size_t k = 0; k < n; ++k) line[kWords + k] = line[k] + line[kWords - kSeparation + k];
+            std::copy(line.begin() + ptrdiff_t(n), line.begin() + ptrdiff_t(n) + kWords, line.begin());
+            left -= n;
+        }
+        std::copy(line.begin(), line.begin() + kWords, words_.begin());
+        front_ = 0;
+        rear_ = kWords - kSeparation;
         return;
     }
     Words v;

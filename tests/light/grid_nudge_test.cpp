@@ -27,7 +27,8 @@ TEST(CLibraryRandom, FollowsTheGnuRandSequence) {
     EXPECT_EQ(other.next(), 383100999);
     EXPECT_EQ(other.next(), 858300821);
     // Skipping ahead (long runs jump by powers of the step) lands where stepping does.
-    for (uint64_t count : {0ull, 5ull, 124ull, 125ull, 597ull, 597ull * 1000 + 17}) {
+    for (uint64_t count : {0ull, 5ull, 30ull, 31ull, 124ull, 125ull, 512ull, 597ull, 1043ull, 4096ull, 4097ull,
+                           597ull * 1000 + 17}) {
         CLibraryRandom stepped(7), skipped(7);
         (void)stepped.next();
         (void)skipped.next();
