@@ -392,8 +392,26 @@ std::vector<Vec3> downsampleMean(const std::vector<Vec3>& super, int superWidth,
 void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vector<std::optional<SamplePoint>>& points,
                  int w, int h, int maxSamples, std::vector<Vec3>& color, std::vector<int>& samples, LuxelRect& lit) {
     if (lit.empty()) return;
-    for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y)
+    // Each luxel as 0 (no sample point), 1 (dark) or 2 (lit): a window is refined only when it has
+    // both a dark and a lit luxel, which four bytes tell. A row's states are made when the windows
+    // first reach it and follow the luxels the windows refine.
+    auto luxelState = [&](size_t i) -> uint8_t {
+        if (!points[i]) return 0;
+        return color[i].x + color[i].y + color[i].z > 0 ? 2 : 1;
+    };
+    std::vector<uint8_t> state(points.size());
+    int madeRows = std::max(0, lit.y0 - 1);  // the rows from the first window's up to this one have states
+    for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y) {
+        for (; madeRows <= y + 1; ++madeRows)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(madeRows) * size_t(w) + size_t(x);
+                state[i] = luxelState(i);
+            }
         for (int x = std::max(0, lit.x0 - 1); x + 1 < w && x <= lit.x1; ++x) {
+            const uint8_t* top = &state[size_t(y) * size_t(w) + size_t(x)];
+            const uint8_t* bottom = top + w;
+            if ((((1u << top[0]) | (1u << top[1]) | (1u << bottom[0]) | (1u << bottom[1])) & 6u) != 6u)
+                continue;  // no dark luxel or no lit one
             const int sx[4] = {x, x + 1, x, x + 1}, sy[4] = {y, y, y + 1, y + 1};
             int mapped = 0, lighted = 0;
             Vec3 total;
@@ -410,10 +428,12 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
                 if (!points[i] || samples[i] >= maxSamples) continue;
                 color[i] = sampler.subsample(light, points, w, h, sx[t], sy[t], points[i]->origin, 0.25f, samples[i],
                                              maxSamples, color[i]);
+                state[i] = luxelState(i);
                 ++samples[i];
                 lit.add(sx[t], sy[t]);
             }
         }
+    }
     for (int y = lit.y0; y <= lit.y1; ++y)
         std::fill_n(samples.begin() + ptrdiff_t(y) * w + lit.x0, lit.x1 - lit.x0 + 1, 1);
 }
