@@ -3,6 +3,7 @@
 // bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -270,6 +271,56 @@ TEST(BatchedPointLights, LanesKeepTheEdgesOfTheOnePointFunctions) {
             }
             EXPECT_TRUE(grid[1].has_value());  // the grid keeps a point at the envelope
         }
+}
+
+// The four-lane path of area lights decides the -fast bound as the one-sample path does: with the
+// tolerance at the median of the exact contributions, about half of the samples fall below it,
+// many of them where the bound alone cannot tell.
+TEST(BatchedPointLights, AreaLanesKeepTheFastBound) {
+    World world;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coord(-300, 300), z(-200, 0), unit(-1, 1);
+    std::vector<std::optional<SamplePoint>> points;
+    for (int i = 0; i < 800; ++i)
+        points.push_back(SamplePoint{{coord(rng), coord(rng), z(rng)},
+                                     normalize(Vec3{unit(rng), unit(rng), 1.5f}), 0, i % 5 == 0});
+    std::vector<uint32_t> which(points.size());
+    for (uint32_t i = 0; i < which.size(); ++i) which[i] = i;
+    LightingEnv env;
+    env.scene = world.scene.get();
+    env.tree = world.tree.get();
+    for (Light light : test::squareEmitterLights(4000, 30, 25, -1)) {
+        light.cluster = 0;
+        light.fast = true;
+        light.falloffTolerance = 0;
+        std::vector<float> adds;  // before occlusion
+        std::vector<ShadowRay> unused;
+        LightingEnv unoccluded = env;
+        unoccluded.deferredRays = &unused;
+        for (const std::optional<SamplePoint>& p : points)
+            if (std::optional<LightContribution> c = lightToSample(light, *p, unoccluded, 1e9f))
+                adds.push_back(maxComponent(c->color));
+        ASSERT_GT(adds.size(), 100u);
+        std::nth_element(adds.begin(), adds.begin() + ptrdiff_t(adds.size() / 2), adds.end());
+        light.falloffTolerance = adds[adds.size() / 2] / maxComponent(light.color);
+        std::vector<ShadowRay> oneRays, batchRays;
+        LightingEnv one = env, batch = env;
+        one.deferredRays = &oneRays;
+        batch.deferredRays = &batchRays;
+        std::vector<Vec3> expected(points.size()), out(points.size());
+        size_t lit = 0;
+        for (uint32_t i : which)
+            if (std::optional<LightContribution> c = lightToSample(light, *points[i], one, 1e9f)) {
+                expected[i] = c->color;
+                ++lit;
+            }
+        std::vector<size_t> traced;
+        lightToSamples(light, batch, 1e9f, points, which, out, nullptr, traced);
+        for (uint32_t i : which) ASSERT_TRUE(sameBits(expected[i], out[i])) << i;
+        ASSERT_EQ(oneRays.size(), batchRays.size());
+        EXPECT_GT(lit, adds.size() / 4);
+        EXPECT_LT(lit, adds.size() * 3 / 4);
+    }
 }
 
 TEST(BatchedPointLights, WhichLightsAndEnvironmentsTakeTheBatch) {

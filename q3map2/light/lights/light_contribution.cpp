@@ -181,6 +181,29 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     return add;
 }
 
+// areaLightAdd's end without -faster, once the point is pushed off the emitter's plane and past the
+// -fast bound: the exact form factor, and for a two-sided emitter seen from its back the point
+// behind it that the shadow ray aims at. `target`, `dist` and `dir` come in as those towards the
+// emitter's origin.
+[[gnu::always_inline]] inline float areaLightFormFactorAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided,
+                                                           float envelope, const LightingEnv& env, Vec3 pushed,
+                                                           Vec3& target, float& dist, Vec3& dir) {
+    float factor = pointToPolygonFormFactor(pushed, n, light.winding);
+    if (factor == 0) return 0;
+    if (factor < 0) {
+        if (!(twoSided || light.twoSided)) return 0;
+        factor = -factor;
+        target = light.origin - light.normal * 2.0f;  // trace to the emitter's other side
+        const Vec3 toLight = target - p;
+        dist = length(toLight);
+        if (dist >= envelope) return 0;
+        dir = dist > 0 ? toLight / dist : n;
+    }
+    const float add = factor * light.add;
+    if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return 0;
+    return add;
+}
+
 // q3map2's area light at a luxel or vertex before occlusion: the light's amount (0 when it sends
 // none), the point its shadow ray aims at (the emitter's origin, or just behind it for a two-sided
 // emitter seen from its back), and the unclamped distance and direction to that point.
@@ -210,18 +233,7 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
         add = light.photons / (clamped * clamped) * angle;
     } else {
         if (surelyBelowFastTolerance(light, pushed, n, env)) return 0;
-        float factor = pointToPolygonFormFactor(pushed, n, light.winding);
-        if (factor == 0) return 0;
-        if (factor < 0) {
-            if (!(twoSided || light.twoSided)) return 0;
-            factor = -factor;
-            target = light.origin - light.normal * 2.0f;  // trace to the emitter's other side
-            toLight = target - p;
-            dist = length(toLight);
-            if (dist >= envelope) return 0;
-            dir = dist > 0 ? toLight / dist : n;
-        }
-        add = factor * light.add;
+        return areaLightFormFactorAdd(light, p, n, twoSided, envelope, env, pushed, target, dist, dir);
     }
     if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return 0;
     return add;
@@ -456,10 +468,13 @@ struct DistanceLanes {
     _mm_store_ps(lanes.add, add);
 }
 
-// pointLightAdd at four sample points.
-[[gnu::always_inline]] inline void pointLightLanes(const Light& light, const ContributionSettings& settings,
-                                                   float envelope, const SamplePoint* const* samples,
-                                                   PointLightLanes& lanes) {
+// Four sample points as lanes: origins, normals, two-sidedness (all bits), and which lanes face
+// `lightOrigin` (lightToSamplesOf's test: behind a one-sided surface when dot(light, n) - dot(p, n)
+// < 0).
+struct SampleLanes {
+    __m128 px, py, pz, nx, ny, nz, twoSided, facing;
+};
+[[gnu::always_inline]] inline SampleLanes sampleLanes(const SamplePoint* const* samples, Vec3 lightOrigin) {
     alignas(16) float px[4], py[4], pz[4], nx[4], ny[4], nz[4];
     alignas(16) uint32_t twoSided[4];
     for (int l = 0; l < 4; ++l) {
@@ -468,14 +483,25 @@ struct DistanceLanes {
         nx[l] = s.normal.x, ny[l] = s.normal.y, nz[l] = s.normal.z;
         twoSided[l] = s.twoSided ? ~0u : 0u;
     }
-    const __m128 Px = _mm_load_ps(px), Py = _mm_load_ps(py), Pz = _mm_load_ps(pz);
-    const __m128 Nx = _mm_load_ps(nx), Ny = _mm_load_ps(ny), Nz = _mm_load_ps(nz);
-    const __m128 both = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(twoSided)));
+    SampleLanes sl;
+    sl.px = _mm_load_ps(px), sl.py = _mm_load_ps(py), sl.pz = _mm_load_ps(pz);
+    sl.nx = _mm_load_ps(nx), sl.ny = _mm_load_ps(ny), sl.nz = _mm_load_ps(nz);
+    sl.twoSided = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(twoSided)));
+    const __m128 lx = _mm_set1_ps(lightOrigin.x), ly = _mm_set1_ps(lightOrigin.y), lz = _mm_set1_ps(lightOrigin.z);
+    const __m128 behind = _mm_cmplt_ps(
+        _mm_sub_ps(dot3(lx, ly, lz, sl.nx, sl.ny, sl.nz), dot3(sl.px, sl.py, sl.pz, sl.nx, sl.ny, sl.nz)), _mm_setzero_ps());
+    sl.facing = _mm_or_ps(sl.twoSided, _mm_andnot_ps(behind, _mm_castsi128_ps(_mm_set1_epi32(-1))));
+    return sl;
+}
+
+// pointLightAdd at four sample points.
+[[gnu::always_inline]] inline void pointLightLanes(const Light& light, const ContributionSettings& settings,
+                                                   float envelope, const SamplePoint* const* samples,
+                                                   PointLightLanes& lanes) {
+    const SampleLanes sl = sampleLanes(samples, light.origin);
+    const __m128 Px = sl.px, Py = sl.py, Pz = sl.pz, Nx = sl.nx, Ny = sl.ny, Nz = sl.nz, both = sl.twoSided;
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-    // Behind a one-sided surface: dot(light, n) - dot(p, n) < 0.
-    const __m128 Lx = _mm_set1_ps(light.origin.x), Ly = _mm_set1_ps(light.origin.y), Lz = _mm_set1_ps(light.origin.z);
-    const __m128 behind = _mm_cmplt_ps(_mm_sub_ps(dot3(Lx, Ly, Lz, Nx, Ny, Nz), dot3(Px, Py, Pz, Nx, Ny, Nz)), zero);
-    lanes.facing = _mm_movemask_ps(_mm_or_ps(both, _mm_andnot_ps(behind, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
+    lanes.facing = _mm_movemask_ps(sl.facing);
 
     const DistanceLanes d = distanceLanes(light, Px, Py, Pz);
     const __m128 beyond = _mm_cmpge_ps(d.dist, _mm_set1_ps(envelope));  // dist >= envelope: no light
@@ -503,6 +529,93 @@ struct DistanceLanes {
     // std::min / std::max keep a NaN where the SSE forms drop it: lanes with one go to the scalar code.
     const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(incidence, add), _mm_cmpord_ps(d.clamped, angle));
     settleLanes(light, light.fast || settings.forceFast, d, add, beyond, ordered, lanes);
+}
+
+// An area light at four sample points without -faster: areaLightAdd up to its exact form factor
+// (the facing test, the emitter plane's tests, the push off it, the distance, the direction and
+// the -fast bound) by SSE lanes, in its float operations and order. `candidate` marks the lanes
+// left for the form factor (areaLightFormFactorAdd), `settled` those the lanes decide.
+struct AreaLightLanes {
+    alignas(16) float pushedX[4], pushedY[4], pushedZ[4], dist[4], dirX[4], dirY[4], dirZ[4];
+    int candidate = 0;
+    int settled = 0;
+};
+
+[[gnu::always_inline]] inline __m128 selectLanes(__m128 mask, __m128 a, __m128 b) {
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
+
+[[gnu::always_inline]] inline void areaLightLanes(const Light& light, const LightingEnv& env, float envelope,
+                                                  const SamplePoint* const* samples, AreaLightLanes& lanes) {
+    const SampleLanes sl = sampleLanes(samples, light.origin);
+    const __m128 Px = sl.px, Py = sl.py, Pz = sl.pz, Nx = sl.nx, Ny = sl.ny, Nz = sl.nz;
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    const __m128 Ex = _mm_set1_ps(light.normal.x), Ey = _mm_set1_ps(light.normal.y), Ez = _mm_set1_ps(light.normal.z);
+    // lightToSamplesOf's facing test, then the emitter plane's.
+    __m128 keep = sl.facing;
+    const __m128 d = _mm_sub_ps(dot3(Px, Py, Pz, Ex, Ey, Ez), _mm_set1_ps(light.planeDist));
+    const __m128 near3 = _mm_cmplt_ps(d, _mm_set1_ps(3.0f));
+    if (!light.twoSided) keep = _mm_andnot_ps(_mm_and_ps(near3, _mm_cmplt_ps(d, _mm_set1_ps(-1.0f))), keep);
+    const __m128 coplanar = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-3.0f)),
+                                       _mm_cmpgt_ps(dot3(Nx, Ny, Nz, Ex, Ey, Ez), _mm_set1_ps(0.9f)));
+    keep = _mm_andnot_ps(_mm_and_ps(near3, coplanar), keep);
+    // The push off the emitter's plane.
+    const __m128 pushes = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-8.0f)), _mm_cmplt_ps(d, _mm_set1_ps(8.0f)));
+    const __m128 by = _mm_sub_ps(_mm_set1_ps(8.0f), d);
+    const __m128 Qx = selectLanes(pushes, _mm_add_ps(Px, _mm_mul_ps(Ex, by)), Px);
+    const __m128 Qy = selectLanes(pushes, _mm_add_ps(Py, _mm_mul_ps(Ey, by)), Py);
+    const __m128 Qz = selectLanes(pushes, _mm_add_ps(Pz, _mm_mul_ps(Ez, by)), Pz);
+    const DistanceLanes dl = distanceLanes(light, Px, Py, Pz);
+    keep = _mm_andnot_ps(_mm_cmpge_ps(dl.dist, _mm_set1_ps(envelope)), keep);
+    const __m128 positive = _mm_cmpgt_ps(dl.dist, zero);
+    // A lane at the emitter's origin (no direction) or with a NaN goes to the scalar code.
+    const __m128 ordered = _mm_and_ps(_mm_and_ps(_mm_cmpord_ps(d, dl.dirX), _mm_cmpord_ps(dl.dirY, dl.dirZ)),
+                                      _mm_and_ps(_mm_cmpord_ps(Nx, Ny), _mm_cmpord_ps(Nz, Nz)));
+    const __m128 open = _mm_and_ps(positive, ordered);
+    // surelyBelowFastTolerance: formFactorUpperBound at the pushed point, as form_factor.h takes it.
+    const EmitterBounds& b = light.emitter;
+    if ((light.fast || env.settings.forceFast) && light.add > 0 && b.radius >= 0) {
+        const __m128 Q[3] = {Qx, Qy, Qz}, N[3] = {Nx, Ny, Nz};
+        __m128 lo = zero, hi = zero, nearest[3];
+        for (int k = 0; k < 3; ++k) {
+            const __m128 mins = _mm_set1_ps(b.box.mins[k]), maxs = _mm_set1_ps(b.box.maxs[k]);
+            nearest[k] = _mm_sub_ps(_mm_min_ps(_mm_max_ps(Q[k], mins), maxs), Q[k]);
+            const __m128 a = _mm_mul_ps(N[k], _mm_sub_ps(mins, Q[k])), c = _mm_mul_ps(N[k], _mm_sub_ps(maxs, Q[k]));
+            lo = _mm_add_ps(lo, _mm_min_ps(a, c));
+            hi = _mm_add_ps(hi, _mm_max_ps(a, c));
+        }
+        const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+        const __m128 reach = _mm_max_ps(_mm_and_ps(lo, absMask), _mm_and_ps(hi, absMask));
+        const __m128 dist = _mm_sqrt_ps(dot3(nearest[0], nearest[1], nearest[2], nearest[0], nearest[1], nearest[2]));
+        const __m128 receiver = _mm_min_ps(_mm_div_ps(reach, dist), one);
+        __m128 emitter = one;
+        if (b.flat) {
+            const __m128 cx = _mm_sub_ps(_mm_set1_ps(b.center.x), Qx), cy = _mm_sub_ps(_mm_set1_ps(b.center.y), Qy),
+                         cz = _mm_sub_ps(_mm_set1_ps(b.center.z), Qz);
+            const __m128 offPlane = _mm_and_ps(dot3(cx, cy, cz, _mm_set1_ps(b.planeNormal.x), _mm_set1_ps(b.planeNormal.y),
+                                                    _mm_set1_ps(b.planeNormal.z)),
+                                               absMask);
+            emitter = _mm_min_ps(_mm_div_ps(_mm_add_ps(offPlane, _mm_set1_ps(b.flatness)), dist), one);
+        }
+        const __m128 bound = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(b.area), receiver), emitter),
+                                        _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kPi), dist), dist));
+        const __m128 scaled = _mm_add_ps(_mm_mul_ps(bound, _mm_set1_ps(1.02f)), _mm_set1_ps(1e-5f));
+        // Only where the bound is finite: closer than one unit it is unbounded.
+        const __m128 below = _mm_and_ps(_mm_cmpgt_ps(dist, one),
+                                        _mm_cmple_ps(_mm_mul_ps(scaled, _mm_set1_ps(light.add)),
+                                                     _mm_set1_ps(light.falloffTolerance)));
+        keep = _mm_andnot_ps(below, keep);
+    }
+    // A lane that is not kept is settled whatever its values; a kept one needs a direction.
+    lanes.settled = _mm_movemask_ps(_mm_or_ps(_mm_andnot_ps(keep, all), open));
+    lanes.candidate = _mm_movemask_ps(_mm_and_ps(keep, open));
+    _mm_store_ps(lanes.pushedX, Qx);
+    _mm_store_ps(lanes.pushedY, Qy);
+    _mm_store_ps(lanes.pushedZ, Qz);
+    _mm_store_ps(lanes.dist, dl.dist);
+    _mm_store_ps(lanes.dirX, dl.dirX);
+    _mm_store_ps(lanes.dirY, dl.dirY);
+    _mm_store_ps(lanes.dirZ, dl.dirZ);
 }
 
 // lightToGridPointsOf's point light (pointLightAtGridPoint) at four grid points.
@@ -556,6 +669,45 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
                 if (color == Vec3{}) continue;
                 const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
                 const DeferredRay ray = deferShadowRay(env, sample.origin, light.origin, dir, lanes.dist[l]);
+                if (ray == DeferredRay::Blocked) continue;
+                if (ray == DeferredRay::Queued) traced.push_back(i);
+                out[i] = color;
+                if (dirs) dirs[i] = dir;
+            }
+        }
+    }
+    if (area && !env.settings.faster) {
+        // Four samples at a time up to the form factor; a lane the lanes leave open takes the
+        // scalar path below.
+        AreaLightLanes lanes;
+        const SamplePoint* four[4];
+        for (; first + 4 <= which.size(); first += 4) {
+            for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
+            areaLightLanes(light, env, envelope, four, lanes);
+            for (int l = 0; l < 4; ++l) {
+                const int bit = 1 << l;
+                if (!(lanes.settled & bit)) {
+                    lightToSamplesOf<area>(light, env, envelope, points, std::span<const uint32_t>(&which[first + size_t(l)], 1),
+                                           out, dirs, traced);
+                    continue;
+                }
+                if (!(lanes.candidate & bit)) continue;
+                const uint32_t i = which[first + size_t(l)];
+                const SamplePoint& sample = *four[l];
+                if (sample.cluster != lastCluster) {
+                    lastCluster = sample.cluster;
+                    lastCulled = pvsCulledInline(light, sample.cluster, env);
+                }
+                if (lastCulled) continue;
+                Vec3 target = light.origin, dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
+                float dist = lanes.dist[l];
+                const Vec3 pushed{lanes.pushedX[l], lanes.pushedY[l], lanes.pushedZ[l]};
+                const float add = areaLightFormFactorAdd(light, sample.origin, sample.normal, sample.twoSided, envelope,
+                                                         env, pushed, target, dist, dir);
+                if (add <= 0) continue;
+                const Vec3 color = light.color * add;
+                if (color == Vec3{}) continue;
+                const DeferredRay ray = deferShadowRay(env, sample.origin, target, dir, dist);
                 if (ray == DeferredRay::Blocked) continue;
                 if (ray == DeferredRay::Queued) traced.push_back(i);
                 out[i] = color;
