@@ -320,6 +320,23 @@ TEST(BatchedPointLights, AreaLanesKeepTheFastBound) {
         ASSERT_EQ(oneRays.size(), batchRays.size());
         EXPECT_GT(lit, adds.size() / 4);
         EXPECT_LT(lit, adds.size() * 3 / 4);
+        // Grid points at the same places (their normal is their direction to the light).
+        std::vector<Vec3> origins;
+        for (const std::optional<SamplePoint>& p : points) origins.push_back(p->origin);
+        std::vector<int> clusters(origins.size(), 0);
+        std::vector<std::optional<LightContribution>> grid(origins.size());
+        std::vector<int32_t> rayOf(origins.size(), -1);
+        lightToGridPoints(light, batch, 1e9f, origins, clusters, which, grid, rayOf);
+        size_t gridLit = 0;
+        for (uint32_t i : which) {
+            const std::optional<LightContribution> c = lightToGridPoint(light, origins[i], 0, one, 1e9f);
+            ASSERT_EQ(c.has_value(), grid[i].has_value()) << i;
+            if (c) {
+                ASSERT_TRUE(sameBits(c->color, grid[i]->color)) << i;
+            }
+            gridLit += c.has_value();
+        }
+        EXPECT_GT(gridLit, 0u);
     }
 }
 

@@ -25,7 +25,7 @@ struct PointLightLanes {
     alignas(16) float dist[4], dirX[4], dirY[4], dirZ[4], add[4];
     int facing = 0;  // bit per lane: lit from the light's side
     int settled = 0; // bit per lane: the lanes' answer holds (else the scalar code decides)
-    int lit = 0;     // bit per lane: a contribution (before PVS and occlusion)
+    int candidate = 0;  // bit per lane: a contribution (before PVS and occlusion)
 };
 
 [[gnu::always_inline]] inline __m128 dot3(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
@@ -58,7 +58,7 @@ struct DistanceLanes {
     if (fast) above = _mm_and_ps(above, _mm_cmpnle_ps(add, _mm_set1_ps(light.falloffTolerance)));
     const __m128 positive = _mm_cmpgt_ps(d.dist, zero);
     lanes.settled = _mm_movemask_ps(_mm_or_ps(beyond, _mm_and_ps(positive, ordered)));
-    lanes.lit = _mm_movemask_ps(_mm_andnot_ps(beyond, _mm_and_ps(positive, above)));
+    lanes.candidate = _mm_movemask_ps(_mm_andnot_ps(beyond, _mm_and_ps(positive, above)));
     _mm_store_ps(lanes.dist, d.dist);
     _mm_store_ps(lanes.dirX, d.dirX);
     _mm_store_ps(lanes.dirY, d.dirY);
@@ -129,6 +129,57 @@ struct SampleLanes {
     settleLanes(light, light.fast || settings.forceFast, d, add, beyond, ordered, lanes);
 }
 
+// surelyBelowFastTolerance at four points (px, py, pz) with normals (nx, ny, nz): the lanes where
+// formFactorUpperBound, as form_factor.h takes it, keeps the light at or below the -fast tolerance.
+[[gnu::always_inline]] inline __m128 surelyBelowFastToleranceLanes(const Light& light, const LightingEnv& env,
+                                                                    __m128 Qx, __m128 Qy, __m128 Qz, __m128 Nx,
+                                                                    __m128 Ny, __m128 Nz) {
+    const EmitterBounds& b = light.emitter;
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    if (!(light.fast || env.settings.forceFast) || !(light.add > 0) || b.radius < 0) return zero;
+    const __m128 Q[3] = {Qx, Qy, Qz}, N[3] = {Nx, Ny, Nz};
+    __m128 lo = zero, hi = zero, nearest[3];
+    for (int k = 0; k < 3; ++k) {
+        const __m128 mins = _mm_set1_ps(b.box.mins[k]), maxs = _mm_set1_ps(b.box.maxs[k]);
+        nearest[k] = _mm_sub_ps(_mm_min_ps(_mm_max_ps(Q[k], mins), maxs), Q[k]);
+        const __m128 a = _mm_mul_ps(N[k], _mm_sub_ps(mins, Q[k])), c = _mm_mul_ps(N[k], _mm_sub_ps(maxs, Q[k]));
+        lo = _mm_add_ps(lo, _mm_min_ps(a, c));
+        hi = _mm_add_ps(hi, _mm_max_ps(a, c));
+    }
+    const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 reach = _mm_max_ps(_mm_and_ps(lo, absMask), _mm_and_ps(hi, absMask));
+    const __m128 dist = _mm_sqrt_ps(dot3(nearest[0], nearest[1], nearest[2], nearest[0], nearest[1], nearest[2]));
+    const __m128 receiver = _mm_min_ps(_mm_div_ps(reach, dist), one);
+    __m128 emitter = one;
+    if (b.flat) {
+        const __m128 cx = _mm_sub_ps(_mm_set1_ps(b.center.x), Qx), cy = _mm_sub_ps(_mm_set1_ps(b.center.y), Qy),
+                     cz = _mm_sub_ps(_mm_set1_ps(b.center.z), Qz);
+        const __m128 offPlane = _mm_and_ps(
+            dot3(cx, cy, cz, _mm_set1_ps(b.planeNormal.x), _mm_set1_ps(b.planeNormal.y), _mm_set1_ps(b.planeNormal.z)),
+            absMask);
+        emitter = _mm_min_ps(_mm_div_ps(_mm_add_ps(offPlane, _mm_set1_ps(b.flatness)), dist), one);
+    }
+    const __m128 bound = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(b.area), receiver), emitter),
+                                    _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kPi), dist), dist));
+    const __m128 scaled = _mm_add_ps(_mm_mul_ps(bound, _mm_set1_ps(1.02f)), _mm_set1_ps(1e-5f));
+    // Only where the bound is finite: closer than one unit it is unbounded.
+    return _mm_and_ps(_mm_cmpgt_ps(dist, one),
+                      _mm_cmple_ps(_mm_mul_ps(scaled, _mm_set1_ps(light.add)), _mm_set1_ps(light.falloffTolerance)));
+}
+
+// Points within 8 units of the emitter's plane (`d` from it) pushed to 8 in front of it, as
+// areaLightAdd does: p + normal * (8 - d).
+[[gnu::always_inline]] inline void pushOffEmitter(const Light& light, __m128 d, __m128 Px, __m128 Py, __m128 Pz,
+                                                  __m128& Qx, __m128& Qy, __m128& Qz) {
+    const __m128 pushes = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-8.0f)), _mm_cmplt_ps(d, _mm_set1_ps(8.0f)));
+    const __m128 by = _mm_sub_ps(_mm_set1_ps(8.0f), d);
+    const __m128 push[3] = {_mm_mul_ps(_mm_set1_ps(light.normal.x), by), _mm_mul_ps(_mm_set1_ps(light.normal.y), by),
+                            _mm_mul_ps(_mm_set1_ps(light.normal.z), by)};
+    Qx = _mm_or_ps(_mm_and_ps(pushes, _mm_add_ps(Px, push[0])), _mm_andnot_ps(pushes, Px));
+    Qy = _mm_or_ps(_mm_and_ps(pushes, _mm_add_ps(Py, push[1])), _mm_andnot_ps(pushes, Py));
+    Qz = _mm_or_ps(_mm_and_ps(pushes, _mm_add_ps(Pz, push[2])), _mm_andnot_ps(pushes, Pz));
+}
+
 // An area light at four sample points without -faster: areaLightAdd up to its exact form factor
 // (the facing test, the emitter plane's tests, the push off it, the distance, the direction and
 // the -fast bound) by SSE lanes, in its float operations and order. `candidate` marks the lanes
@@ -139,71 +190,10 @@ struct AreaLightLanes {
     int settled = 0;
 };
 
-[[gnu::always_inline]] inline __m128 selectLanes(__m128 mask, __m128 a, __m128 b) {
-    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
-}
-
-[[gnu::always_inline]] inline void areaLightLanes(const Light& light, const LightingEnv& env, float envelope,
-                                                  const SamplePoint* const* samples, AreaLightLanes& lanes) {
-    const SampleLanes sl = sampleLanes(samples, light.origin);
-    const __m128 Px = sl.px, Py = sl.py, Pz = sl.pz, Nx = sl.nx, Ny = sl.ny, Nz = sl.nz;
-    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), all = _mm_castsi128_ps(_mm_set1_epi32(-1));
-    const __m128 Ex = _mm_set1_ps(light.normal.x), Ey = _mm_set1_ps(light.normal.y), Ez = _mm_set1_ps(light.normal.z);
-    // lightToSamplesOf's facing test, then the emitter plane's.
-    __m128 keep = sl.facing;
-    const __m128 d = _mm_sub_ps(dot3(Px, Py, Pz, Ex, Ey, Ez), _mm_set1_ps(light.planeDist));
-    const __m128 near3 = _mm_cmplt_ps(d, _mm_set1_ps(3.0f));
-    if (!light.twoSided) keep = _mm_andnot_ps(_mm_and_ps(near3, _mm_cmplt_ps(d, _mm_set1_ps(-1.0f))), keep);
-    const __m128 coplanar = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-3.0f)),
-                                       _mm_cmpgt_ps(dot3(Nx, Ny, Nz, Ex, Ey, Ez), _mm_set1_ps(0.9f)));
-    keep = _mm_andnot_ps(_mm_and_ps(near3, coplanar), keep);
-    // The push off the emitter's plane.
-    const __m128 pushes = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-8.0f)), _mm_cmplt_ps(d, _mm_set1_ps(8.0f)));
-    const __m128 by = _mm_sub_ps(_mm_set1_ps(8.0f), d);
-    const __m128 Qx = selectLanes(pushes, _mm_add_ps(Px, _mm_mul_ps(Ex, by)), Px);
-    const __m128 Qy = selectLanes(pushes, _mm_add_ps(Py, _mm_mul_ps(Ey, by)), Py);
-    const __m128 Qz = selectLanes(pushes, _mm_add_ps(Pz, _mm_mul_ps(Ez, by)), Pz);
-    const DistanceLanes dl = distanceLanes(light, Px, Py, Pz);
-    keep = _mm_andnot_ps(_mm_cmpge_ps(dl.dist, _mm_set1_ps(envelope)), keep);
-    const __m128 positive = _mm_cmpgt_ps(dl.dist, zero);
-    // A lane at the emitter's origin (no direction) or with a NaN goes to the scalar code.
-    const __m128 ordered = _mm_and_ps(_mm_and_ps(_mm_cmpord_ps(d, dl.dirX), _mm_cmpord_ps(dl.dirY, dl.dirZ)),
-                                      _mm_and_ps(_mm_cmpord_ps(Nx, Ny), _mm_cmpord_ps(Nz, Nz)));
-    const __m128 open = _mm_and_ps(positive, ordered);
-    // surelyBelowFastTolerance: formFactorUpperBound at the pushed point, as form_factor.h takes it.
-    const EmitterBounds& b = light.emitter;
-    if ((light.fast || env.settings.forceFast) && light.add > 0 && b.radius >= 0) {
-        const __m128 Q[3] = {Qx, Qy, Qz}, N[3] = {Nx, Ny, Nz};
-        __m128 lo = zero, hi = zero, nearest[3];
-        for (int k = 0; k < 3; ++k) {
-            const __m128 mins = _mm_set1_ps(b.box.mins[k]), maxs = _mm_set1_ps(b.box.maxs[k]);
-            nearest[k] = _mm_sub_ps(_mm_min_ps(_mm_max_ps(Q[k], mins), maxs), Q[k]);
-            const __m128 a = _mm_mul_ps(N[k], _mm_sub_ps(mins, Q[k])), c = _mm_mul_ps(N[k], _mm_sub_ps(maxs, Q[k]));
-            lo = _mm_add_ps(lo, _mm_min_ps(a, c));
-            hi = _mm_add_ps(hi, _mm_max_ps(a, c));
-        }
-        const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-        const __m128 reach = _mm_max_ps(_mm_and_ps(lo, absMask), _mm_and_ps(hi, absMask));
-        const __m128 dist = _mm_sqrt_ps(dot3(nearest[0], nearest[1], nearest[2], nearest[0], nearest[1], nearest[2]));
-        const __m128 receiver = _mm_min_ps(_mm_div_ps(reach, dist), one);
-        __m128 emitter = one;
-        if (b.flat) {
-            const __m128 cx = _mm_sub_ps(_mm_set1_ps(b.center.x), Qx), cy = _mm_sub_ps(_mm_set1_ps(b.center.y), Qy),
-                         cz = _mm_sub_ps(_mm_set1_ps(b.center.z), Qz);
-            const __m128 offPlane = _mm_and_ps(dot3(cx, cy, cz, _mm_set1_ps(b.planeNormal.x), _mm_set1_ps(b.planeNormal.y),
-                                                    _mm_set1_ps(b.planeNormal.z)),
-                                               absMask);
-            emitter = _mm_min_ps(_mm_div_ps(_mm_add_ps(offPlane, _mm_set1_ps(b.flatness)), dist), one);
-        }
-        const __m128 bound = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(b.area), receiver), emitter),
-                                        _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(kPi), dist), dist));
-        const __m128 scaled = _mm_add_ps(_mm_mul_ps(bound, _mm_set1_ps(1.02f)), _mm_set1_ps(1e-5f));
-        // Only where the bound is finite: closer than one unit it is unbounded.
-        const __m128 below = _mm_and_ps(_mm_cmpgt_ps(dist, one),
-                                        _mm_cmple_ps(_mm_mul_ps(scaled, _mm_set1_ps(light.add)),
-                                                     _mm_set1_ps(light.falloffTolerance)));
-        keep = _mm_andnot_ps(below, keep);
-    }
+// The area lanes' verdicts (`keep`: past every test, `open`: a direction to take) and values.
+[[gnu::always_inline]] inline void storeAreaLanes(__m128 keep, __m128 open, __m128 Qx, __m128 Qy, __m128 Qz,
+                                                  const DistanceLanes& dl, AreaLightLanes& lanes) {
+    const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
     // A lane that is not kept is settled whatever its values; a kept one needs a direction.
     lanes.settled = _mm_movemask_ps(_mm_or_ps(_mm_andnot_ps(keep, all), open));
     lanes.candidate = _mm_movemask_ps(_mm_and_ps(keep, open));
@@ -214,6 +204,57 @@ struct AreaLightLanes {
     _mm_store_ps(lanes.dirX, dl.dirX);
     _mm_store_ps(lanes.dirY, dl.dirY);
     _mm_store_ps(lanes.dirZ, dl.dirZ);
+}
+
+[[gnu::always_inline]] inline void areaLightLanes(const Light& light, const LightingEnv& env, float envelope,
+                                                  const SamplePoint* const* samples, AreaLightLanes& lanes) {
+    const SampleLanes sl = sampleLanes(samples, light.origin);
+    const __m128 Px = sl.px, Py = sl.py, Pz = sl.pz, Nx = sl.nx, Ny = sl.ny, Nz = sl.nz;
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 Ex = _mm_set1_ps(light.normal.x), Ey = _mm_set1_ps(light.normal.y), Ez = _mm_set1_ps(light.normal.z);
+    // lightToSamplesOf's facing test, then the emitter plane's.
+    __m128 keep = sl.facing;
+    const __m128 d = _mm_sub_ps(dot3(Px, Py, Pz, Ex, Ey, Ez), _mm_set1_ps(light.planeDist));
+    const __m128 near3 = _mm_cmplt_ps(d, _mm_set1_ps(3.0f));
+    if (!light.twoSided) keep = _mm_andnot_ps(_mm_and_ps(near3, _mm_cmplt_ps(d, _mm_set1_ps(-1.0f))), keep);
+    const __m128 coplanar = _mm_and_ps(_mm_cmpgt_ps(d, _mm_set1_ps(-3.0f)),
+                                       _mm_cmpgt_ps(dot3(Nx, Ny, Nz, Ex, Ey, Ez), _mm_set1_ps(0.9f)));
+    keep = _mm_andnot_ps(_mm_and_ps(near3, coplanar), keep);
+    // The push off the emitter's plane.
+    __m128 Qx, Qy, Qz;
+    pushOffEmitter(light, d, Px, Py, Pz, Qx, Qy, Qz);
+    const DistanceLanes dl = distanceLanes(light, Px, Py, Pz);
+    keep = _mm_andnot_ps(_mm_cmpge_ps(dl.dist, _mm_set1_ps(envelope)), keep);
+    const __m128 positive = _mm_cmpgt_ps(dl.dist, zero);
+    // A lane at the emitter's origin (no direction) or with a NaN goes to the scalar code.
+    const __m128 ordered = _mm_and_ps(_mm_and_ps(_mm_cmpord_ps(d, dl.dirX), _mm_cmpord_ps(dl.dirY, dl.dirZ)),
+                                      _mm_and_ps(_mm_cmpord_ps(Nx, Ny), _mm_cmpord_ps(Nz, Nz)));
+    const __m128 open = _mm_and_ps(positive, ordered);
+    // surelyBelowFastTolerance at the pushed point.
+    keep = _mm_andnot_ps(surelyBelowFastToleranceLanes(light, env, Qx, Qy, Qz, Nx, Ny, Nz), keep);
+    storeAreaLanes(keep, open, Qx, Qy, Qz, dl, lanes);
+}
+
+// lightToGridPointsOf's area light without -faster (areaLightAtGridPoint up to its exact form
+// factor, the grid point's normal being its direction to the light) at four grid points.
+[[gnu::always_inline]] inline void areaLightGridLanes(const Light& light, const LightingEnv& env, float envelope,
+                                                      const Vec3* const* origins, AreaLightLanes& lanes) {
+    alignas(16) float px[4], py[4], pz[4];
+    for (int l = 0; l < 4; ++l) px[l] = origins[l]->x, py[l] = origins[l]->y, pz[l] = origins[l]->z;
+    const __m128 Px = _mm_load_ps(px), Py = _mm_load_ps(py), Pz = _mm_load_ps(pz);
+    const __m128 zero = _mm_setzero_ps(), all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    const __m128 Ex = _mm_set1_ps(light.normal.x), Ey = _mm_set1_ps(light.normal.y), Ez = _mm_set1_ps(light.normal.z);
+    const DistanceLanes dl = distanceLanes(light, Px, Py, Pz);
+    __m128 keep = _mm_andnot_ps(_mm_cmpgt_ps(dl.dist, _mm_set1_ps(envelope)), all);  // dist > envelope: none
+    const __m128 d = _mm_sub_ps(dot3(Px, Py, Pz, Ex, Ey, Ez), _mm_set1_ps(light.planeDist));
+    if (!light.twoSided) keep = _mm_andnot_ps(_mm_cmplt_ps(d, _mm_set1_ps(-1.0f)), keep);
+    __m128 Qx, Qy, Qz;
+    pushOffEmitter(light, d, Px, Py, Pz, Qx, Qy, Qz);
+    const __m128 positive = _mm_cmpgt_ps(dl.dist, zero);
+    const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(d, dl.dirX), _mm_cmpord_ps(dl.dirY, dl.dirZ));
+    const __m128 open = _mm_and_ps(positive, ordered);
+    keep = _mm_andnot_ps(surelyBelowFastToleranceLanes(light, env, Qx, Qy, Qz, dl.dirX, dl.dirY, dl.dirZ), keep);
+    storeAreaLanes(keep, open, Qx, Qy, Qz, dl, lanes);
 }
 
 // lightToGridPointsOf's point light (pointLightAtGridPoint) at four grid points.

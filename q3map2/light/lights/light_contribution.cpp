@@ -254,6 +254,18 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
 
 // q3map2's area light at a grid point `dist` from its origin in direction `dir` (the grid point's
 // normal), before the -fast tolerance and occlusion; 0 when it sends none.
+// areaLightAtGridPoint's end without -faster, once the point is pushed off the emitter's plane and
+// past the -fast bound: the exact form factor with the direction to the light as the normal.
+[[gnu::always_inline]] inline float areaLightGridFormFactorAdd(const Light& light, Vec3 pushed, Vec3 dir) {
+    float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
+    if (factor == 0) return 0;
+    if (factor < 0) {
+        if (!light.twoSided) return 0;
+        factor = -factor;
+    }
+    return factor * light.add;
+}
+
 [[gnu::always_inline]] inline float areaLightAtGridPoint(const Light& light, Vec3 origin, float dist, Vec3 dir,
                                                          const LightingEnv& env) {
     if (env.settings.faster) {
@@ -264,13 +276,7 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     if (!light.twoSided && d < -1.0f) return 0;
     const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
     if (surelyBelowFastTolerance(light, pushed, dir, env)) return 0;
-    float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
-    if (factor == 0) return 0;
-    if (factor < 0) {
-        if (!light.twoSided) return 0;
-        factor = -factor;
-    }
-    return factor * light.add;
+    return areaLightGridFormFactorAdd(light, pushed, dir);
 }
 
 }  // namespace
@@ -444,7 +450,7 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
                                            out, dirs, traced);
                     continue;
                 }
-                if (!(lanes.lit & bit)) continue;
+                if (!(lanes.candidate & bit)) continue;
                 if (sample.cluster != lastCluster) {
                     lastCluster = sample.cluster;
                     lastCulled = pvsCulledInline(light, sample.cluster, env);
@@ -551,13 +557,13 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
     int lastCluster = -2;
     bool lastCulled = false;
     size_t first = 0;
-    if (!area && light.type == LightType::Point) {
-        // Four points at a time; a lane the lanes leave open takes the scalar path below.
-        PointLightLanes lanes;
+    // Four points at a time (point lights, and area lights up to their form factor); a lane the
+    // lanes leave open takes the scalar path below. `laneAdd` gives a candidate lane's light.
+    auto byLanes = [&](auto& lanes, auto makeLanes, auto laneAdd) {
         const Vec3* four[4];
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &origins[which[first + size_t(l)]];
-            pointLightGridLanes(light, envelope, fast, four, lanes);
+            makeLanes(four, lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
                 const uint32_t p = which[first + size_t(l)];
@@ -566,15 +572,17 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
                                               std::span<const uint32_t>(&which[first + size_t(l)], 1), out, rayOf);
                     continue;
                 }
-                if (!(lanes.lit & bit)) continue;
+                if (!(lanes.candidate & bit)) continue;
                 if (clusters[p] != lastCluster) {
                     lastCluster = clusters[p];
                     lastCulled = pvsCulledInline(light, clusters[p], env);
                 }
                 if (lastCulled) continue;
-                const Vec3 color = light.color * lanes.add[l];
-                if (color == Vec3{}) continue;
                 const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
+                const float add = laneAdd(lanes, l, dir);
+                if (add <= 0 || (fast && add <= light.falloffTolerance)) continue;
+                const Vec3 color = light.color * add;
+                if (color == Vec3{}) continue;
                 const int32_t next = int32_t(env.deferredRays->size());
                 const DeferredRay ray = deferShadowRay(env, *four[l], light.origin, dir, lanes.dist[l]);
                 if (ray == DeferredRay::Blocked) continue;
@@ -582,6 +590,20 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
                 out[p] = LightContribution{color, dir, light.style};
             }
         }
+    };
+    if (!area && light.type == LightType::Point) {
+        PointLightLanes lanes;
+        byLanes(
+            lanes, [&](const Vec3* const* four, PointLightLanes& ln) { pointLightGridLanes(light, envelope, fast, four, ln); },
+            [](const PointLightLanes& ln, int l, Vec3) { return ln.add[l]; });
+    }
+    if (area && !env.settings.faster) {
+        AreaLightLanes lanes;
+        byLanes(
+            lanes, [&](const Vec3* const* four, AreaLightLanes& ln) { areaLightGridLanes(light, env, envelope, four, ln); },
+            [&](const AreaLightLanes& ln, int l, Vec3 dir) {
+                return areaLightGridFormFactorAdd(light, Vec3{ln.pushedX[l], ln.pushedY[l], ln.pushedZ[l]}, dir);
+            });
     }
     for (const uint32_t p : which.subspan(first)) {
         if (clusters[p] != lastCluster) {
