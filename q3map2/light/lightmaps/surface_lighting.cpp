@@ -413,16 +413,12 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
             if ((((1u << top[0]) | (1u << top[1]) | (1u << bottom[0]) | (1u << bottom[1])) & 6u) != 6u)
                 continue;  // no dark luxel or no lit one
             const int sx[4] = {x, x + 1, x, x + 1}, sy[4] = {y, y, y + 1, y + 1};
-            int mapped = 0, lighted = 0;
             Vec3 total;
             for (int t = 0; t < 4; ++t) {
                 const size_t i = size_t(sy[t]) * size_t(w) + size_t(sx[t]);
-                if (!points[i]) continue;
-                ++mapped;
-                total += color[i];
-                lighted += color[i].x + color[i].y + color[i].z > 0;
+                if (points[i]) total += color[i];
             }
-            if (maxComponent(total) <= 4 || lighted == 0 || lighted == mapped) continue;
+            if (maxComponent(total) <= 4) continue;
             for (int t = 0; t < 4; ++t) {
                 const size_t i = size_t(sy[t]) * size_t(w) + size_t(sx[t]);
                 if (!points[i] || samples[i] >= maxSamples) continue;

@@ -23,8 +23,7 @@ constexpr float kMinDistance = 16.0f;  // q3map2 clamps distances to avoid hot s
 // NaN) is left to the scalar code.
 struct PointLightLanes {
     alignas(16) float dist[4], dirX[4], dirY[4], dirZ[4], add[4];
-    int facing = 0;  // bit per lane: lit from the light's side
-    int settled = 0; // bit per lane: the lanes' answer holds (else the scalar code decides)
+    int settled = 0;    // bit per lane: the lanes' answer holds (else the scalar code decides)
     int candidate = 0;  // bit per lane: a contribution (before PVS and occlusion)
 };
 
@@ -99,7 +98,6 @@ struct SampleLanes {
     const SampleLanes sl = sampleLanes(samples, light.origin);
     const __m128 Px = sl.px, Py = sl.py, Pz = sl.pz, Nx = sl.nx, Ny = sl.ny, Nz = sl.nz, both = sl.twoSided;
     const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
-    lanes.facing = _mm_movemask_ps(sl.facing);
 
     const DistanceLanes d = distanceLanes(light, Px, Py, Pz);
     const __m128 beyond = _mm_cmpge_ps(d.dist, _mm_set1_ps(envelope));  // dist >= envelope: no light
@@ -127,6 +125,10 @@ struct SampleLanes {
     // std::min / std::max keep a NaN where the SSE forms drop it: lanes with one go to the scalar code.
     const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(incidence, add), _mm_cmpord_ps(d.clamped, angle));
     settleLanes(light, light.fast || settings.forceFast, d, add, beyond, ordered, lanes);
+    // A lane facing away is settled (dark) whatever its values.
+    const int facing = _mm_movemask_ps(sl.facing);
+    lanes.settled |= ~facing & 0xF;
+    lanes.candidate &= facing;
 }
 
 // surelyBelowFastTolerance at four points (px, py, pz) with normals (nx, ny, nz): the lanes where

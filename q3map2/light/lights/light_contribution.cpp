@@ -252,8 +252,6 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     return add;
 }
 
-// q3map2's area light at a grid point `dist` from its origin in direction `dir` (the grid point's
-// normal), before the -fast tolerance and occlusion; 0 when it sends none.
 // areaLightAtGridPoint's end without -faster, once the point is pushed off the emitter's plane and
 // past the -fast bound: the exact form factor with the direction to the light as the normal.
 [[gnu::always_inline]] inline float areaLightGridFormFactorAdd(const Light& light, Vec3 pushed, Vec3 dir) {
@@ -266,6 +264,8 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     return factor * light.add;
 }
 
+// q3map2's area light at a grid point `dist` from its origin in direction `dir` (the grid point's
+// normal), before the -fast tolerance and occlusion; 0 when it sends none.
 [[gnu::always_inline]] inline float areaLightAtGridPoint(const Light& light, Vec3 origin, float dist, Vec3 dir,
                                                          const LightingEnv& env) {
     if (env.settings.faster) {
@@ -433,48 +433,14 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
     int lastCluster = -2;
     bool lastCulled = false;
     size_t first = 0;
-    if (!area && light.type == LightType::Point) {
-        // Four samples at a time; a lane the lanes leave open takes the scalar path below.
-        PointLightLanes lanes;
+    // Four samples at a time (point lights, and area lights up to their form factor); a lane the
+    // lanes leave open takes the scalar path below. `laneAdd` gives a candidate lane's light and
+    // may move the point its ray aims at, with that ray's distance and direction.
+    auto byLanes = [&](auto& lanes, auto makeLanes, auto laneAdd) {
         const SamplePoint* four[4];
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
-            pointLightLanes(light, env.settings, envelope, four, lanes);
-            for (int l = 0; l < 4; ++l) {
-                const int bit = 1 << l;
-                if (!(lanes.facing & bit)) continue;
-                const uint32_t i = which[first + size_t(l)];
-                const SamplePoint& sample = *four[l];
-                if (!(lanes.settled & bit)) {
-                    lightToSamplesOf<area>(light, env, envelope, points, std::span<const uint32_t>(&which[first + size_t(l)], 1),
-                                           out, dirs, traced);
-                    continue;
-                }
-                if (!(lanes.candidate & bit)) continue;
-                if (sample.cluster != lastCluster) {
-                    lastCluster = sample.cluster;
-                    lastCulled = pvsCulledInline(light, sample.cluster, env);
-                }
-                if (lastCulled) continue;
-                const Vec3 color = light.color * lanes.add[l];
-                if (color == Vec3{}) continue;
-                const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
-                const DeferredRay ray = deferShadowRay(env, sample.origin, light.origin, dir, lanes.dist[l]);
-                if (ray == DeferredRay::Blocked) continue;
-                if (ray == DeferredRay::Queued) traced.push_back(i);
-                out[i] = color;
-                if (dirs) dirs[i] = dir;
-            }
-        }
-    }
-    if (area && !env.settings.faster) {
-        // Four samples at a time up to the form factor; a lane the lanes leave open takes the
-        // scalar path below.
-        AreaLightLanes lanes;
-        const SamplePoint* four[4];
-        for (; first + 4 <= which.size(); first += 4) {
-            for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
-            areaLightLanes(light, env, envelope, four, lanes);
+            makeLanes(four, lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
                 if (!(lanes.settled & bit)) {
@@ -492,9 +458,7 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
                 if (lastCulled) continue;
                 Vec3 target = light.origin, dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
                 float dist = lanes.dist[l];
-                const Vec3 pushed{lanes.pushedX[l], lanes.pushedY[l], lanes.pushedZ[l]};
-                const float add = areaLightFormFactorAdd(light, sample.origin, sample.normal, sample.twoSided, envelope,
-                                                         env, pushed, target, dist, dir);
+                const float add = laneAdd(lanes, l, sample, target, dist, dir);
                 if (add <= 0) continue;
                 const Vec3 color = light.color * add;
                 if (color == Vec3{}) continue;
@@ -505,6 +469,26 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
                 if (dirs) dirs[i] = dir;
             }
         }
+    };
+    if (!area && light.type == LightType::Point) {
+        PointLightLanes lanes;
+        byLanes(
+            lanes,
+            [&](const SamplePoint* const* four, PointLightLanes& ln) {
+                pointLightLanes(light, env.settings, envelope, four, ln);
+            },
+            [](const PointLightLanes& ln, int l, const SamplePoint&, Vec3&, float&, Vec3&) { return ln.add[l]; });
+    }
+    if (area && !env.settings.faster) {
+        AreaLightLanes lanes;
+        byLanes(
+            lanes,
+            [&](const SamplePoint* const* four, AreaLightLanes& ln) { areaLightLanes(light, env, envelope, four, ln); },
+            [&](const AreaLightLanes& ln, int l, const SamplePoint& sample, Vec3& target, float& dist, Vec3& dir) {
+                const Vec3 pushed{ln.pushedX[l], ln.pushedY[l], ln.pushedZ[l]};
+                return areaLightFormFactorAdd(light, sample.origin, sample.normal, sample.twoSided, envelope, env,
+                                              pushed, target, dist, dir);
+            });
     }
     for (const uint32_t i : which.subspan(first)) {
         const SamplePoint& sample = *points[i];

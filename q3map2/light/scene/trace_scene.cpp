@@ -218,8 +218,8 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             std::find(groupOfBit_.begin(), groupOfBit_.end(), group) == groupOfBit_.end())
             groupOfBit_.push_back(group);
     }
-    // A caster's triangles as an Embree geometry with the given mask (its index buffer returned too).
-    auto newTriangles = [this](const SceneSurface& s, uint32_t mask, const unsigned*& indices) {
+    // A caster's triangles as an Embree geometry with the given mask.
+    auto newTriangles = [this](const SceneSurface& s, uint32_t mask) {
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryMask(geom, mask);
         const size_t numVerts = s.xyz.size();
@@ -233,7 +233,6 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             uint32_t idx = s.triangles[i];
             ib[i] = idx < numVerts ? idx : 0;
         }
-        indices = ib;
         return geom;
     };
     // Point-light segments meet sky surfaces as walls. When every sky caster is in one shadow group
@@ -254,8 +253,7 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     }
     for (const SceneSurface& s : surfaces) {
         if (!castsShadow(s, options)) continue;
-        const unsigned* ib = nullptr;
-        RTCGeometry geom = newTriangles(s, groupBit(s.castShadows), ib);
+        RTCGeometry geom = newTriangles(s, groupBit(s.castShadows));
         const size_t numVerts = s.xyz.size();
         const size_t numTris = s.triangles.size() / 3;
         Record rec;
@@ -265,6 +263,7 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
         rec.skyIndex = s.skyIndex;
         if (rec.filters) {
             rec.st = s.st;
+            const auto* ib = static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
             rec.triangles.assign(ib, ib + numTris * 3);
             if (rec.st.size() < numVerts * 2) rec.st.clear();
             // Shadow rays are occlusion queries: only the occlusion filter is ever called.
@@ -280,8 +279,7 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     casters_ = records_.size() + skyRecords_.size();
     if (skySegmentBit_ != 0)
         for (const SceneSurface* s : skyCasters) {
-            const unsigned* ib = nullptr;
-            RTCGeometry geom = newTriangles(*s, skySegmentBit_, ib);
+            RTCGeometry geom = newTriangles(*s, skySegmentBit_);
             rtcCommitGeometry(geom);
             const unsigned id = rtcAttachGeometry(embree_->scene, geom);
             rtcReleaseGeometry(geom);

@@ -192,7 +192,7 @@ private:
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
-    std::vector<Record> records_;     // casters other than sky, indexed by Embree geometry id
+    std::vector<Record> records_;     // casters other than sky (then the sky copies), by Embree geometry id
     std::vector<Record> skyRecords_;  // sky surfaces, indexed by geometry id of the sky scene
     std::vector<int> groupOfBit_;     // group magnitude of each mask bit (bit 0 = group 1)
     size_t casters_ = 0;              // surfaces that cast shadows (sky surfaces once)
