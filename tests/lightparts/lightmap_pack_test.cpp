@@ -114,21 +114,35 @@ TEST(LightmapPack, FirstFitInSortedOrder) {
     EXPECT_TRUE(r.placements[3].solid);
 }
 
-TEST(LightmapPack, CollapseAndNoCollapse) {
+TEST(LightmapPack, CollapseNoCollapseAndNoTwins) {
     std::vector<LightmapBlock> blocks = {gradient(4, 4, 0), gradient(4, 4, 0), uniformBlock(4, 4, {5, 5, 5})};
-    const PackedLightmaps p = packLightmaps(blocks, slow(8));
+    auto packWith = [&](bool collapse, bool twins) {
+        PackOptions o = slow(8);
+        o.collapse = collapse;
+        o.twins = twins;
+        return packLightmaps(blocks, o);
+    };
+    // Whether the two identical blocks were stored apart, each with its own texels.
+    auto apart = [](const PackedLightmaps& p) {
+        return p.placements[1].twinOf == -1 &&
+               p.placements[1].x + 8 * p.placements[1].y != p.placements[0].x + 8 * p.placements[0].y;
+    };
+    const PackedLightmaps p = packWith(true, true);
     EXPECT_EQ(p.placements[1].twinOf, 0);
     EXPECT_EQ(p.placements[1].page, p.placements[0].page);
     EXPECT_EQ(p.placements[1].x, p.placements[0].x);
     EXPECT_TRUE(p.placements[2].solid);
-    PackOptions no = slow(8);
-    no.collapse = false;
-    const PackedLightmaps q = packLightmaps(blocks, no);
-    EXPECT_EQ(q.placements[1].twinOf, -1);
-    EXPECT_NE(q.placements[1].x + 8 * q.placements[1].y, q.placements[0].x + 8 * q.placements[0].y);
+    const PackedLightmaps q = packWith(false, true);  // -nocollapse
+    EXPECT_TRUE(apart(q));
     EXPECT_FALSE(q.placements[2].solid);
     EXPECT_EQ(q.placements[2].width, 4);
     EXPECT_EQ(q.pages.size(), 1u);
+    // -deluxe (no twins): q3map2 keeps identical lightmaps apart, each with its own directions,
+    // but still stores a solid one as a single texel.
+    const PackedLightmaps r = packWith(true, false);
+    EXPECT_TRUE(apart(r));
+    EXPECT_TRUE(r.placements[2].solid);
+    EXPECT_EQ(r.placements[2].width, 1);
 }
 
 // A twin's texels that its master lacks are stored with the master's (q3map2 MergeBSPLuxels), so

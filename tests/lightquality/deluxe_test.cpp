@@ -60,7 +60,7 @@ TEST(DeluxeStage, InterleavedPagesPointAtTheLight) {
 TEST(DeluxeStage, LightPagesMatchTheRunWithoutDeluxe) {
     // Each scene gets a fresh folder: read every result before the next scene is written.
     const auto plainPath = floorScene("deluxeoff");
-    ASSERT_EQ(quality::runLight(plainPath, {"-nocollapse"}), 0);
+    ASSERT_EQ(quality::runLight(plainPath, {}), 0);
     const bsp::Bsp plain = bsp::readBsp(plainPath);
     const auto deluxePath = floorScene("deluxeon");
     ASSERT_EQ(quality::runLight(deluxePath, {"-deluxe"}), 0);
@@ -70,6 +70,40 @@ TEST(DeluxeStage, LightPagesMatchTheRunWithoutDeluxe) {
     const auto noDeluxe = floorScene("nodeluxe");
     ASSERT_EQ(quality::runLight(noDeluxe, {"-deluxe", "-nodeluxe"}), 0);
     EXPECT_EQ(bsp::readBsp(noDeluxe).lightmaps.size(), 128u * 128 * 3);
+}
+
+// q3map2 merges no twins with deluxe maps but still stores a lightmap of at most 2 x 2 luxels as
+// one texel; that texel's direction is its first luxel's.
+TEST(DeluxeStage, SmallLightmapsAreOneTexelWithTheirDirection) {
+    bsp::Bsp b = quality::emptyBsp({"textures/test/floor"});
+    quality::addQuad(b, {0, 0, 0}, {0, 512, 0}, {512, 0, 0}, 0);
+    const Vec3 smallCorner{600, 0, 0};
+    quality::addQuad(b, smallCorner, {0, 8, 0}, {8, 0, 0}, 0);  // at most 2 x 2 luxels at the default sample size
+    quality::finish(b, {});
+    std::vector<bsp::Entity> ents = bsp::parseEntities(b.entities, "deluxesolid");
+    bsp::Entity light;
+    light.pairs = {{"classname", "light"}, {"origin", "200 300 96"}, {"light", "400"}};
+    ents.push_back(light);
+    b.entities = bsp::unparseEntities(ents);
+    const auto path = quality::writeScene(b, "deluxesolid");
+    ASSERT_EQ(quality::runLight(path, {"-deluxe"}), 0);
+    const bsp::Bsp lit = bsp::readBsp(path);
+    const bsp::Surface& small = lit.surfaces[1];
+    ASSERT_GE(small.lightmapNum, 0);
+    EXPECT_EQ(small.lightmapNum % 2, 0);
+    // Every vertex samples the centre of one texel.
+    const bsp::DrawVert& first = lit.drawVerts[size_t(small.firstVert)];
+    for (int v = 0; v < small.numVerts; ++v) {
+        const bsp::DrawVert& dv = lit.drawVerts[size_t(small.firstVert + v)];
+        EXPECT_EQ(dv.lightmap[0], first.lightmap[0]);
+        EXPECT_EQ(dv.lightmap[1], first.lightmap[1]);
+    }
+    const int x = int(first.lightmap[0] * 128), y = int(first.lightmap[1] * 128);
+    const size_t at = (size_t(small.lightmapNum + 1) * 128 * 128 + size_t(y) * 128 + size_t(x)) * 3;
+    ASSERT_LT(at + 2, lit.lightmaps.size());
+    const Vec3 dir = Vec3{float(lit.lightmaps[at]), float(lit.lightmaps[at + 1]), float(lit.lightmaps[at + 2])} / 127.5f -
+                     Vec3{1, 1, 1};
+    EXPECT_LT(angleDegrees(dir, kLight - (smallCorner + Vec3{4, 4, 0})), 6.0f);
 }
 
 TEST(DeluxeStage, TangentSpaceModeUsesTheTextureFrame) {

@@ -45,7 +45,8 @@ std::vector<Rgb8> encodeDeluxels(const bsp::Bsp& bsp, const SurfaceLight& lit, c
 
 // Turns the packed light pages [L0, L1, ...] into [L0, D0, L1, D1, ...]: each block's direction
 // texels are stamped at its placement in the direction page after its light page, and every
-// placement's page index is doubled. Blocks must not be solid or collapsed.
+// placement's page index is doubled (a solid block's one texel takes its first texel's direction).
+// Blocks must not be twins of others.
 void interleaveDirectionPages(PackedLightmaps& packed, std::span<const LightmapBlock> blocks);
 
 // Worldspawn "deluxeMaps" key for the mode.

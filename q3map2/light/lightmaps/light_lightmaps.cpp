@@ -285,9 +285,11 @@ StoreResult storeLightmaps(LightContext& ctx, const std::vector<SurfaceLight>& l
     pack.pageSize = o.lightmapWidth;
     pack.gamePageSize = 128;
     pack.external = o.externalLightmaps;
-    // Styled and deluxe pages address the same texels as their style-0 block: every block keeps
-    // its own full-size texels (q3map2 forces -nocollapse for styles and for deluxe maps).
-    pack.collapse = !o.noCollapse && styled.empty() && !deluxe;
+    // Styled pages address the same texels as their style-0 block: every block keeps its own
+    // full-size texels (a styled light sets q3map2's -nocollapse). Deluxe pages only forbid twins:
+    // a solid lightmap's one texel takes the direction of its first texel, as in q3map2.
+    pack.collapse = !o.noCollapse && styled.empty();
+    pack.twins = !deluxe;
     pack.color = ctx.color;
     pack.minLight = ctx.world.minLight;
     PackedLightmaps packed = packLightmaps(blocks, pack);

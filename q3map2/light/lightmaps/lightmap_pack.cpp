@@ -358,7 +358,7 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
             st.solidTexel[i] = solidColor(b);
         }
     }
-    if (!o.collapse) return st;
+    if (!o.collapse || !o.twins) return st;
     std::map<std::tuple<bool, int, int, int>, std::vector<size_t>> groups;
     for (size_t i = 0; i < n; ++i) {
         const Rgb8 c = onLight ? Rgb8{} : st.solidTexel[i];  // light: solid colours within epsilon of any byte

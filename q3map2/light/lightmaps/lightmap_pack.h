@@ -20,6 +20,9 @@ struct PackOptions {
     int gamePageSize = 128;   // the game's lump-14 page size
     bool external = false;    // -external: pages go to maps/<map>/lm_NNNN.tga
     bool collapse = true;     // false with -nocollapse (also disables solid lightmaps)
+    // Whether identical lightmaps may share texels. False with -deluxe: q3map2 then merges no twins
+    // (a twin's directions would be lost) but still stores a solid lightmap as one texel.
+    bool twins = true;
     bool fastAllocate = true; // false with -slowallocate: test every position of every page
     // How blocks that carry their light (LightmapBlock::light) turn it into bytes after collapsing:
     // colorToBytes(max(light, minLight), block brightness, color), as q3map2 stores its luxels.
