@@ -54,6 +54,11 @@ TEST(TracePieces, TinyPiecesAreDroppedAndFiltersKeepTheirSize) {
     const std::vector<SceneSurface> exact = traceCasterPieces({bigWall(&alpha)}, noTree, {});
     ASSERT_EQ(exact[0].triangles.size(), 6u);
     for (const Vec3& p : exact[0].xyz) EXPECT_LE(p.x, 1000.0f);
+    // Only they keep texture coordinates: no other caster's texture is read.
+    EXPECT_EQ(exact[0].st.size(), exact[0].xyz.size() * 2);
+    const std::vector<SceneSurface> opaque = traceCasterPieces({bigWall()}, noTree, {});
+    EXPECT_FALSE(opaque[0].triangles.empty());
+    EXPECT_TRUE(opaque[0].st.empty());
     // Surfaces that cast nothing come back unchanged.
     LightingShader trans;
     trans.translucent = true;

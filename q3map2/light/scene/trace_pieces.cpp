@@ -267,7 +267,8 @@ struct EmittedPieces {
 };
 
 // Appends the fan of a winding to `out`, each triangle grown by the barycentric slack unless
-// `exact`; triangles whose edge cross product is below the coplanar epsilon are dropped.
+// `exact`; triangles whose edge cross product is below the coplanar epsilon are dropped. Only the
+// exact pieces (filtering surfaces, whose texture a ray reads) keep texture coordinates.
 void appendPieces(CornerSpan w, bool exact, SceneSurface& out) {
     const float e = exact ? 0.0f : kTraceBaryEpsilon;
     const TraceVert& a = w.first[0];
@@ -282,6 +283,7 @@ void appendPieces(CornerSpan w, bool exact, SceneSurface& out) {
         const uint32_t base = uint32_t(out.xyz.size());
         for (const auto& [u, v] : weights) {
             out.xyz.push_back(a.xyz + e1 * u + e2 * v);
+            if (!exact) continue;
             out.st.push_back(a.s + (b.s - a.s) * u + (c.s - a.s) * v);
             out.st.push_back(a.t + (b.t - a.t) * u + (c.t - a.t) * v);
         }
@@ -382,7 +384,7 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
         size_t fans = 0;  // an upper bound of the triangles, so that the arrays grow once
         for (const CornerSpan& w : bySurface[i]) fans += w.count >= 3 ? w.count - 2 : 0;
         out[i].xyz.reserve(fans * 3);
-        out[i].st.reserve(fans * 6);
+        if (exact) out[i].st.reserve(fans * 6);
         out[i].triangles.reserve(fans * 3);
         for (const CornerSpan& w : bySurface[i]) appendPieces(w, exact, out[i]);
     };
