@@ -1,5 +1,6 @@
-// The release options (`-light -fast -samples 2 -bounce 2 -patchshadows -dirty -deluxe`) on a real
-// oacmp map, in real engines: the relit map loads in ioquake3 and DarkPlaces under the strict
+// The release options (`-light -fast -samples 2 -bounce 2 -patchshadows -dirty -deluxe`, with
+// `-nocollapse` so that the runs with and without bounces pack alike) on a real oacmp map, in
+// real engines: the relit map loads in ioquake3 and DarkPlaces under the strict
 // checks, its deluxe maps follow the layout both engines expect (an even number of pages in lump
 // 14, colour and direction interleaved, every lightmapped surface on an even page, worldspawn
 // `deluxeMaps 1`), and the same view is measurably brighter with `-bounce 2` than without it, in
