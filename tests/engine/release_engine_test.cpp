@@ -75,7 +75,8 @@ double meanAtVertices(const bsp::Bsp& map) {
         if (s.lightmapNum < 0) continue;
         for (int v = 0; v < s.numVerts; ++v) {
             const bsp::DrawVert& dv = map.drawVerts.at(size_t(s.firstVert + v));
-            const int x = std::clamp(int(dv.lightmap[0] * 128), 0, 127), y = std::clamp(int(dv.lightmap[1] * 128), 0, 127);
+            const int x = std::clamp(int(dv.lightmap[0] * 128), 0, 127);
+            const int y = std::clamp(int(dv.lightmap[1] * 128), 0, 127);
             const size_t at = size_t(s.lightmapNum) * bsp::kLightmapPageBytes + (size_t(y) * 128 + size_t(x)) * 3;
             if (at + 2 >= map.lightmaps.size()) continue;
             sum += double(map.lightmaps[at]) + map.lightmaps[at + 1] + map.lightmaps[at + 2];

@@ -101,8 +101,8 @@ TEST(DeluxeStage, SmallLightmapsAreOneTexelWithTheirDirection) {
     const int x = int(first.lightmap[0] * 128), y = int(first.lightmap[1] * 128);
     const size_t at = (size_t(small.lightmapNum + 1) * 128 * 128 + size_t(y) * 128 + size_t(x)) * 3;
     ASSERT_LT(at + 2, lit.lightmaps.size());
-    const Vec3 dir = Vec3{float(lit.lightmaps[at]), float(lit.lightmaps[at + 1]), float(lit.lightmaps[at + 2])} / 127.5f -
-                     Vec3{1, 1, 1};
+    const Vec3 bytes{float(lit.lightmaps[at]), float(lit.lightmaps[at + 1]), float(lit.lightmaps[at + 2])};
+    const Vec3 dir = bytes / 127.5f - Vec3{1, 1, 1};
     EXPECT_LT(angleDegrees(dir, kLight - (smallCorner + Vec3{4, 4, 0})), 6.0f);
 }
 

@@ -24,10 +24,10 @@ constexpr float kTraceCoplanarEpsilon = 0.25f;
 
 // `surfaces` with the triangles of every caster replaced by its trace pieces, each grown by the
 // barycentric slack (filtering surfaces keep their exact pieces: q3map2 reads their texture only
-// inside the triangle; only theirs keep texture coordinates). Surfaces that cast nothing are returned unchanged. Without BSP nodes the
-// triangles are only grown. `contents`, when given, receives what each BSP leaf holds. Surfaces are
-// filtered and leaves subdivided on `threads` threads (0: one per core); the result does not
-// depend on their number.
+// inside the triangle; only theirs keep texture coordinates). Surfaces that cast nothing are
+// returned unchanged. Without BSP nodes the triangles are only grown. `contents`, when given,
+// receives what each BSP leaf holds. Surfaces are filtered and leaves subdivided on `threads`
+// threads (0: one per core); the result does not depend on their number.
 std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
                                             const TraceSceneOptions& options, TraceLeafContents* contents = nullptr,
                                             int threads = 0);
