@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <memory>
+#include <mutex>
 
 #include "pk3_archive.h"
 
@@ -36,48 +38,6 @@ std::optional<std::vector<std::string>> splitComponents(const std::string& norma
     return parts;
 }
 
-// The entry of `folder` whose name equals `lowerName` ignoring case; the smallest such name when
-// several differ only in case, so the choice does not depend on directory order.
-std::optional<fs::path> findIgnoringCase(const fs::path& folder, const std::string& lowerName) {
-    std::error_code ec;
-    fs::path exact = folder / lowerName;
-    if (fs::exists(exact, ec)) return exact;
-    std::optional<std::string> best;
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        std::string name = it->path().filename().string();
-        if (lowerCopy(name) == lowerName && (!best || name < *best)) best = name;
-    }
-    if (!best) return std::nullopt;
-    return folder / *best;
-}
-
-// The path below `folder` matching `normalized` case-insensitively, component by component.
-std::optional<fs::path> resolveIgnoringCase(const fs::path& folder, const std::string& normalized) {
-    auto parts = splitComponents(normalized);
-    if (!parts || parts->empty()) return std::nullopt;
-    fs::path current = folder;
-    for (const std::string& part : *parts) {
-        auto next = findIgnoringCase(current, part);
-        if (!next) return std::nullopt;
-        current = *next;
-    }
-    return current;
-}
-
-std::optional<fs::path> resolveLoose(const fs::path& folder, const std::string& normalized) {
-    auto found = resolveIgnoringCase(folder, normalized);
-    std::error_code ec;
-    if (!found || !fs::is_regular_file(*found, ec)) return std::nullopt;
-    return found;
-}
-
-std::optional<fs::path> resolveLooseFolder(const fs::path& folder, const std::string& normalized) {
-    auto found = resolveIgnoringCase(folder, normalized);
-    std::error_code ec;
-    if (!found || !fs::is_directory(*found, ec)) return std::nullopt;
-    return found;
-}
-
 bool hasExtension(const std::string& lowerName, const std::string& lowerExt) {
     if (lowerExt.empty()) return true;
     return lowerName.size() > lowerExt.size() + 1 && lowerName.ends_with(lowerExt) &&
@@ -90,6 +50,67 @@ struct Vfs::Impl {
     std::vector<VfsSource> sources;                 // highest priority first
     std::vector<std::optional<Pk3Archive>> archives;  // parallel to sources; set for archives
     std::vector<fs::path> basePaths;
+
+    // A folder's entries by lower-case name, each the lower-case spelling when it is there, else the
+    // smallest spelling of that name (so the choice does not depend on directory order). Read once,
+    // on the first look-up in the folder: every shader file of a game is looked for in the loose
+    // game folder first, and listing it each time cost milliseconds.
+    using Listing = std::map<std::string, std::string, std::less<>>;
+    mutable std::mutex listingsMutex;
+    mutable std::map<fs::path, std::shared_ptr<const Listing>> listings;
+
+    std::shared_ptr<const Listing> listingOf(const fs::path& folder) const {
+        std::lock_guard lock(listingsMutex);
+        std::shared_ptr<const Listing>& cached = listings[folder];
+        if (cached) return cached;
+        auto listing = std::make_shared<Listing>();
+        std::error_code ec;
+        for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+            std::string name = it->path().filename().string();
+            std::string lower = lowerCopy(name);
+            auto [slot, added] = listing->try_emplace(lower, name);
+            if (!added && slot->second != lower && (name == lower || name < slot->second))
+                slot->second = std::move(name);
+        }
+        cached = std::move(listing);
+        return cached;
+    }
+
+    // The entry of `folder` named `lowerName` ignoring case: the name itself when it is there,
+    // else the smallest spelling that differs from it only in case.
+    std::optional<fs::path> findIgnoringCase(const fs::path& folder, const std::string& lowerName) const {
+        const std::shared_ptr<const Listing> listing = listingOf(folder);
+        const auto it = listing->find(lowerName);
+        if (it == listing->end()) return std::nullopt;
+        return folder / it->second;
+    }
+
+    // The path below `folder` matching `normalized` case-insensitively, component by component.
+    std::optional<fs::path> resolveIgnoringCase(const fs::path& folder, const std::string& normalized) const {
+        auto parts = splitComponents(normalized);
+        if (!parts || parts->empty()) return std::nullopt;
+        fs::path current = folder;
+        for (const std::string& part : *parts) {
+            auto next = findIgnoringCase(current, part);
+            if (!next) return std::nullopt;
+            current = *next;
+        }
+        return current;
+    }
+
+    std::optional<fs::path> resolveLoose(const fs::path& folder, const std::string& normalized) const {
+        auto found = resolveIgnoringCase(folder, normalized);
+        std::error_code ec;
+        if (!found || !fs::is_regular_file(*found, ec)) return std::nullopt;
+        return found;
+    }
+
+    std::optional<fs::path> resolveLooseFolder(const fs::path& folder, const std::string& normalized) const {
+        auto found = resolveIgnoringCase(folder, normalized);
+        std::error_code ec;
+        if (!found || !fs::is_directory(*found, ec)) return std::nullopt;
+        return found;
+    }
 
     // Where `normalized` lives in source `index`: for folders the file, for archives the entry.
     struct Hit {
@@ -264,7 +285,7 @@ std::vector<std::string> Vfs::list(std::string_view dir, std::string_view ext) c
         fs::path folder = impl_->sources[i].location;
         std::string storedDir;  // the folder's spelling on disk, relative to the game folder
         if (!lowerDir.empty()) {
-            auto sub = resolveLooseFolder(folder, lowerDir);
+            auto sub = impl_->resolveLooseFolder(folder, lowerDir);
             if (!sub) continue;
             folder = *sub;
             storedDir = sub->lexically_relative(impl_->sources[i].location).generic_string() + "/";

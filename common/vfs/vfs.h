@@ -67,6 +67,8 @@ struct VfsSource {
 
 class Vfs {
 public:
+    // Loose folders are listed once each, on the first look-up in them: files added to them
+    // afterwards are not seen by this Vfs.
     // Throws FileError for an unknown game profile. Missing folders are skipped silently; unreadable
     // archives are skipped with a warning on `log`.
     Vfs(const VfsOptions& options, Log& log);

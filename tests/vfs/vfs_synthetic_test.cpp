@@ -144,6 +144,26 @@ TEST(VfsLookup, CaseInsensitiveInArchivesAndFolders) {
     EXPECT_FALSE(vfs.exists("../baseq3/pak0.pk3"));  // nothing escapes the game folder
 }
 
+// Folders are listed once and their entries kept: a name's spellings resolve as on disk, the
+// lower-case one first, then the smallest, whichever is looked up first.
+TEST(VfsLookup, CaseVariantsTakeTheLowerCaseOrElseTheSmallestSpelling) {
+    const fs::path base = test::tempDir();
+    writeLoose(base / "baseq3/Scripts/x.shader", "upper");
+    writeLoose(base / "baseq3/scripts/x.shader", "lower");
+    writeLoose(base / "baseq3/Models/m.txt", "mixed");
+    writeLoose(base / "baseq3/MODELS/m.txt", "capitals");
+    writeLoose(base / "baseq3/models2/Skin.TGA", "skin");
+    Captured capture;
+    Vfs vfs(optionsFor(base), capture.log);
+    for (int pass = 0; pass < 2; ++pass) {
+        EXPECT_EQ(text(vfs.read("SCRIPTS/X.shader")), "lower");
+        EXPECT_EQ(text(vfs.read("models/m.txt")), "capitals");
+        EXPECT_EQ(text(vfs.read("models2/skin.tga")), "skin");
+        EXPECT_FALSE(vfs.exists("models3/skin.tga"));
+    }
+    EXPECT_EQ(vfs.sourceOf("models/M.TXT"), (base / "baseq3/MODELS/m.txt").string());
+}
+
 TEST(VfsList, UnionOverSourcesEachOnceSorted) {
     const fs::path base = test::tempDir();
     writeZip(base / "baseq3/pak0.pk3",
