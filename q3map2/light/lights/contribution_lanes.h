@@ -237,13 +237,21 @@ struct AreaLightLanes {
     storeAreaLanes(keep, open, Qx, Qy, Qz, dl, lanes);
 }
 
+// Four grid points as lanes of x, y and z.
+struct GridPointLanes {
+    __m128 x, y, z;
+};
+[[gnu::always_inline]] inline GridPointLanes gridPointLanes(const Vec3* const* origins) {
+    alignas(16) float x[4], y[4], z[4];
+    for (int l = 0; l < 4; ++l) x[l] = origins[l]->x, y[l] = origins[l]->y, z[l] = origins[l]->z;
+    return {_mm_load_ps(x), _mm_load_ps(y), _mm_load_ps(z)};
+}
+
 // lightToGridPointsOf's area light without -faster (areaLightAtGridPoint up to its exact form
 // factor, the grid point's normal being its direction to the light) at four grid points.
 [[gnu::always_inline]] inline void areaLightGridLanes(const Light& light, const LightingEnv& env, float envelope,
                                                       const Vec3* const* origins, AreaLightLanes& lanes) {
-    alignas(16) float px[4], py[4], pz[4];
-    for (int l = 0; l < 4; ++l) px[l] = origins[l]->x, py[l] = origins[l]->y, pz[l] = origins[l]->z;
-    const __m128 Px = _mm_load_ps(px), Py = _mm_load_ps(py), Pz = _mm_load_ps(pz);
+    const auto [Px, Py, Pz] = gridPointLanes(origins);
     const __m128 zero = _mm_setzero_ps(), all = _mm_castsi128_ps(_mm_set1_epi32(-1));
     const __m128 Ex = _mm_set1_ps(light.normal.x), Ey = _mm_set1_ps(light.normal.y), Ez = _mm_set1_ps(light.normal.z);
     const DistanceLanes dl = distanceLanes(light, Px, Py, Pz);
@@ -262,10 +270,9 @@ struct AreaLightLanes {
 // lightToGridPointsOf's point light (pointLightAtGridPoint) at four grid points.
 [[gnu::always_inline]] inline void pointLightGridLanes(const Light& light, float envelope, bool fast,
                                                        const Vec3* const* origins, PointLightLanes& lanes) {
-    alignas(16) float px[4], py[4], pz[4];
-    for (int l = 0; l < 4; ++l) px[l] = origins[l]->x, py[l] = origins[l]->y, pz[l] = origins[l]->z;
+    const auto [Px, Py, Pz] = gridPointLanes(origins);
     const __m128 zero = _mm_setzero_ps();
-    const DistanceLanes d = distanceLanes(light, _mm_load_ps(px), _mm_load_ps(py), _mm_load_ps(pz));
+    const DistanceLanes d = distanceLanes(light, Px, Py, Pz);
     const __m128 beyond = _mm_cmpgt_ps(d.dist, _mm_set1_ps(envelope));  // dist > envelope: no light
     const __m128 add = light.linear ? _mm_max_ps(_mm_sub_ps(_mm_set1_ps(light.photons * kLinearScale),
                                                             _mm_mul_ps(d.clamped, _mm_set1_ps(light.fade))),
