@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+
 #include "lightmap_filter.h"
 
 namespace q3::light {
@@ -76,6 +82,47 @@ TEST(LightmapFilter, BoxFilterWithinARectangleMatchesTheWholeImage) {
                     EXPECT_EQ(f.color[i], (Vec3{})) << x << "," << y;
             }
     }
+}
+
+// The filter as its definition reads, one luxel at a time: the weighted mean of the Mapped luxels
+// of the square, summed row by row, left to right.
+Vec3 plainBoxFilter(const LuxelImage& img, int radius, int x, int y) {
+    Vec3 sum;
+    float weightSum = 0;
+    for (int sy = std::max(0, y - radius); sy <= std::min(img.height - 1, y + radius); ++sy)
+        for (int sx = std::max(0, x - radius); sx <= std::min(img.width - 1, x + radius); ++sx) {
+            if (img.state[img.index(sx, sy)] != LuxelState::Mapped) continue;
+            const float weight =
+                (std::abs(sx - x) == radius ? 0.5f : 1.0f) * (std::abs(sy - y) == radius ? 0.5f : 1.0f);
+            sum += img.color[img.index(sx, sy)] * weight;
+            weightSum += weight;
+        }
+    return weightSum > 0 ? sum / weightSum : img.color[img.index(x, y)];
+}
+
+TEST(LightmapFilter, EveryLuxelIsThePlainFiltersToTheBit) {
+    // Widths around the four-luxel blocks and the radius, colours with full mantissas: luxels
+    // filtered four at a time must sum in the plain order, or their last bits differ.
+    unsigned seed = 11;
+    auto next = [&seed] { return (seed = seed * 1103515245u + 12345u) >> 8; };
+    for (const int radius : {1, 2, 3})
+        for (const int width : {1, 3, 4, 5, 7, 8, 9, 12, 13, 19}) {
+            LuxelImage img(width, 6, LuxelState::Mapped);
+            for (size_t i = 0; i < img.color.size(); ++i) {
+                if (next() % 4 == 0) img.state[i] = next() % 2 ? LuxelState::Unmapped : LuxelState::Occluded;
+                img.color[i] = {float(next() % 100000) / 7.0f, float(next() % 1000) / 3.0f, float(next() % 77) * 0.1f};
+            }
+            const LuxelImage f = boxFilterLuxels(img, radius);
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    const size_t i = img.index(x, y);
+                    const Vec3 want =
+                        img.state[i] == LuxelState::Mapped ? plainBoxFilter(img, radius, x, y) : img.color[i];
+                    using Bits = std::array<uint32_t, 3>;
+                    EXPECT_EQ(std::bit_cast<Bits>(f.color[i]), std::bit_cast<Bits>(want))
+                        << "radius " << radius << " width " << width << " at " << x << "," << y;
+                }
+        }
 }
 
 TEST(LightmapFilter, FillFromNeighbours) {

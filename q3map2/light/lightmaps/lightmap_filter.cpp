@@ -1,10 +1,106 @@
 #include "lightmap_filter.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace q3::light {
+namespace {
+
+#if !defined(__SSE2__)
+// The box filter of one luxel (x, y) of `light`: the weighted mean of the Mapped luxels of its
+// square, clamped to the image; false when the square has none.
+bool filterOne(const LuxelImage& light, int radius, const float* weights, int x, int y, Vec3& mean) {
+    const int side = 2 * radius + 1;
+    const int sy0 = std::max(0, y - radius), sy1 = std::min(light.height - 1, y + radius);
+    const int sx0 = std::max(0, x - radius), sx1 = std::min(light.width - 1, x + radius);
+    Vec3 sum;
+    float weightSum = 0.0f;
+    for (int sy = sy0; sy <= sy1; ++sy) {
+        const size_t row = light.index(0, sy);
+        const float* weightRow = &weights[size_t(sy - y + radius) * size_t(side)];
+        for (int sx = sx0; sx <= sx1; ++sx) {
+            if (light.state[row + size_t(sx)] != LuxelState::Mapped) continue;
+            const float weight = weightRow[sx - x + radius];
+            sum += light.color[row + size_t(sx)] * weight;
+            weightSum += weight;
+        }
+    }
+    if (!(weightSum > 0.0f)) return false;
+    mean = sum / weightSum;
+    return true;
+}
+#endif
+
+#if defined(__SSE2__)
+// The luxels of a rectangle grown by the radius as planes of x, y and z and a mask (all bits set:
+// Mapped), zero and masked off outside the image, with room for whole groups of four.
+struct FilterPlanes {
+    int x0 = 0, y0 = 0, stride = 0;  // image position of plane entry 0; entries per row
+    std::vector<float> x, y, z, mask;
+    size_t at(int ix, int iy) const { return size_t(iy - y0) * size_t(stride) + size_t(ix - x0); }
+};
+
+void fillPlanes(const LuxelImage& light, LuxelRect rect, int radius, FilterPlanes& p) {
+    p.x0 = rect.x0 - radius;
+    p.y0 = rect.y0 - radius;
+    p.stride = (rect.x1 - rect.x0 + 1 + 3) / 4 * 4 + 2 * radius;
+    const size_t size = size_t(p.stride) * size_t(rect.y1 - rect.y0 + 1 + 2 * radius);
+    p.x.assign(size, 0.0f);
+    p.y.assign(size, 0.0f);
+    p.z.assign(size, 0.0f);
+    p.mask.assign(size, 0.0f);
+    const float all = std::bit_cast<float>(~0u);
+    const int ix0 = std::max(0, p.x0), ix1 = std::min(light.width - 1, p.x0 + p.stride - 1);
+    for (int iy = std::max(0, p.y0); iy <= std::min(light.height - 1, rect.y1 + radius); ++iy)
+        for (int ix = ix0; ix <= ix1; ++ix) {
+            const size_t i = light.index(ix, iy), o = p.at(ix, iy);
+            if (light.state[i] != LuxelState::Mapped) continue;
+            p.x[o] = light.color[i].x;
+            p.y[o] = light.color[i].y;
+            p.z[o] = light.color[i].z;
+            p.mask[o] = all;
+        }
+}
+
+// The box filter of luxels x .. x + 3 of row y: each lane sums the Mapped luxels of its square,
+// weighted, row by row and left to right (as a plain loop over one luxel would), taps outside the image or not Mapped adding
+// +0, which changes no sum (one that starts at +0 never becomes -0). Writes the lanes inside
+// `rect` whose own luxel is Mapped.
+void filterFour(const LuxelImage& light, const FilterPlanes& p, int radius, const float* weights, int x, int y,
+                const LuxelRect& rect, std::vector<Vec3>& out) {
+    const int side = 2 * radius + 1;
+    __m128 sumX = _mm_setzero_ps(), sumY = _mm_setzero_ps(), sumZ = _mm_setzero_ps(), weightSum = _mm_setzero_ps();
+    for (int dy = -radius; dy <= radius; ++dy) {
+        const size_t row = p.at(x - radius, y + dy);
+        const float* weightRow = &weights[size_t(dy + radius) * size_t(side)];
+        for (int k = 0; k < side; ++k) {
+            const __m128 use = _mm_loadu_ps(&p.mask[row + size_t(k)]);
+            const __m128 w = _mm_set1_ps(weightRow[k]);
+            sumX = _mm_add_ps(sumX, _mm_and_ps(use, _mm_mul_ps(_mm_loadu_ps(&p.x[row + size_t(k)]), w)));
+            sumY = _mm_add_ps(sumY, _mm_and_ps(use, _mm_mul_ps(_mm_loadu_ps(&p.y[row + size_t(k)]), w)));
+            sumZ = _mm_add_ps(sumZ, _mm_and_ps(use, _mm_mul_ps(_mm_loadu_ps(&p.z[row + size_t(k)]), w)));
+            weightSum = _mm_add_ps(weightSum, _mm_and_ps(use, w));
+        }
+    }
+    alignas(16) float mx[4], my[4], mz[4], ws[4];
+    _mm_store_ps(mx, _mm_div_ps(sumX, weightSum));
+    _mm_store_ps(my, _mm_div_ps(sumY, weightSum));
+    _mm_store_ps(mz, _mm_div_ps(sumZ, weightSum));
+    _mm_store_ps(ws, weightSum);
+    for (int l = 0; l < 4 && x + l <= rect.x1; ++l) {
+        const size_t i = light.index(x + l, y);
+        if (light.state[i] == LuxelState::Mapped && ws[l] > 0.0f) out[i] = Vec3{mx[l], my[l], mz[l]};
+    }
+}
+#endif
+
+}  // namespace
 
 int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool filterOption) {
     const float radius = std::max(0.0f, worldRadius);
@@ -42,26 +138,17 @@ LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect w
         for (int dx = -radius; dx <= radius; ++dx)
             weights[size_t(dy + radius) * size_t(side) + size_t(dx + radius)] =
                 (std::abs(dx) == radius ? 0.5f : 1.0f) * (std::abs(dy) == radius ? 0.5f : 1.0f);
-    for (int y = lit.y0; y <= lit.y1; ++y) {
-        const int sy0 = std::max(0, y - radius), sy1 = std::min(light.height - 1, y + radius);
-        for (int x = lit.x0; x <= lit.x1; ++x) {
-            if (light.state[light.index(x, y)] != LuxelState::Mapped) continue;
-            const int sx0 = std::max(0, x - radius), sx1 = std::min(light.width - 1, x + radius);
-            Vec3 sum;
-            float weightSum = 0.0f;
-            for (int sy = sy0; sy <= sy1; ++sy) {
-                const size_t row = light.index(0, sy);
-                const float* weightRow = &weights[size_t(sy - y + radius) * size_t(side)];
-                for (int sx = sx0; sx <= sx1; ++sx) {
-                    if (light.state[row + size_t(sx)] != LuxelState::Mapped) continue;
-                    const float weight = weightRow[sx - x + radius];
-                    sum += light.color[row + size_t(sx)] * weight;
-                    weightSum += weight;
-                }
-            }
-            if (weightSum > 0.0f) out[light.index(x, y)] = sum / weightSum;
-        }
-    }
+#if defined(__SSE2__)
+    thread_local FilterPlanes planes;
+    if (!lit.empty()) fillPlanes(light, lit, radius, planes);
+    for (int y = lit.y0; y <= lit.y1; ++y)
+        for (int x = lit.x0; x <= lit.x1; x += 4) filterFour(light, planes, radius, weights.data(), x, y, lit, out);
+#else
+    for (int y = lit.y0; y <= lit.y1; ++y)
+        for (int x = lit.x0; x <= lit.x1; ++x)
+            if (light.state[light.index(x, y)] == LuxelState::Mapped)
+                filterOne(light, radius, weights.data(), x, y, out[light.index(x, y)]);
+#endif
     return any;
 }
 
