@@ -113,14 +113,28 @@ LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect w
     // Only lit Mapped luxels feed the means: a luxel whose square holds none keeps its zero, so
     // only the rectangle around them, grown by the radius, needs filtering (a light usually
     // reaches a corner of a large lightmap, and this runs once a light).
+    // Each row is searched from both ends for its first lit luxel and its first one of any state.
     LuxelRect lit, any;
-    for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y)
-        for (int x = std::max(0, within.x0); x <= std::min(light.width - 1, within.x1); ++x) {
-            const size_t i = light.index(x, y);
-            if (light.color[i] == Vec3{}) continue;
-            any.add(x, y);
-            if (light.state[i] == LuxelState::Mapped) lit.add(x, y);
-        }
+    const int wx0 = std::max(0, within.x0), wx1 = std::min(light.width - 1, within.x1);
+    for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y) {
+        const size_t row = light.index(0, y);
+        auto nonzero = [&](int x) { return !(light.color[row + size_t(x)] == Vec3{}); };
+        auto litAt = [&](int x) { return nonzero(x) && light.state[row + size_t(x)] == LuxelState::Mapped; };
+        int first = wx0;
+        while (first <= wx1 && !nonzero(first)) ++first;
+        if (first > wx1) continue;
+        int last = wx1;
+        while (!nonzero(last)) --last;
+        any.add(first, y);
+        any.add(last, y);
+        int firstLit = first;
+        while (firstLit <= last && !litAt(firstLit)) ++firstLit;
+        if (firstLit > last) continue;
+        int lastLit = last;
+        while (!litAt(lastLit)) --lastLit;
+        lit.add(firstLit, y);
+        lit.add(lastLit, y);
+    }
     if (!lit.empty()) {
         lit = LuxelRect{std::max(0, lit.x0 - radius), std::min(light.width - 1, lit.x1 + radius),
                         std::max(0, lit.y0 - radius), std::min(light.height - 1, lit.y1 + radius)};
