@@ -69,9 +69,9 @@ void fillPlanes(const LuxelImage& light, LuxelRect rect, int radius, FilterPlane
 }
 
 // The box filter of luxels x .. x + 3 of row y: each lane sums the Mapped luxels of its square,
-// weighted, row by row and left to right (as a plain loop over one luxel would), taps outside the image or not Mapped adding
-// +0, which changes no sum (one that starts at +0 never becomes -0). Writes the lanes inside
-// `rect` whose own luxel is Mapped.
+// weighted, row by row and left to right, as a plain loop over one luxel would. Taps outside the
+// image or not Mapped add +0, which changes no sum (one that starts at +0 never becomes -0).
+// Writes the lanes inside `rect` whose own luxel is Mapped.
 void filterFour(const LuxelImage& light, const FilterPlanes& p, int radius, const float* weights, int x, int y,
                 const LuxelRect& rect, std::vector<Vec3>& out) {
     const int side = 2 * radius + 1;
@@ -112,8 +112,8 @@ int luxelFilterRadius(float worldRadius, int sampleSize, int superSample, bool f
 LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect within, std::vector<Vec3>& out) {
     // Only lit Mapped luxels feed the means: a luxel whose square holds none keeps its zero, so
     // only the rectangle around them, grown by the radius, needs filtering (a light usually
-    // reaches a corner of a large lightmap, and this runs once a light).
-    // Each row is searched from both ends for its first lit luxel and its first one of any state.
+    // reaches a corner of a large lightmap, and this runs once a light). Each row is searched from
+    // both ends for its first nonzero luxel and its first lit one.
     LuxelRect lit, any;
     const int wx0 = std::max(0, within.x0), wx1 = std::min(light.width - 1, within.x1);
     for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y) {
