@@ -115,25 +115,25 @@ LuxelRect boxFilterLuxelsWithin(const LuxelImage& light, int radius, LuxelRect w
     // reaches a corner of a large lightmap, and this runs once a light). Each row is searched from
     // both ends for its first nonzero luxel and its first lit one.
     LuxelRect lit, any;
+    // The first and last x in [from, to] where `holds` does; false when it holds nowhere.
+    auto ends = [](int from, int to, auto holds, int& first, int& last) {
+        for (first = from; first <= to && !holds(first);) ++first;
+        if (first > to) return false;
+        for (last = to; !holds(last);) --last;
+        return true;
+    };
     const int wx0 = std::max(0, within.x0), wx1 = std::min(light.width - 1, within.x1);
     for (int y = std::max(0, within.y0); y <= std::min(light.height - 1, within.y1); ++y) {
         const size_t row = light.index(0, y);
         auto nonzero = [&](int x) { return !(light.color[row + size_t(x)] == Vec3{}); };
         auto litAt = [&](int x) { return nonzero(x) && light.state[row + size_t(x)] == LuxelState::Mapped; };
-        int first = wx0;
-        while (first <= wx1 && !nonzero(first)) ++first;
-        if (first > wx1) continue;
-        int last = wx1;
-        while (!nonzero(last)) --last;
+        int first, last;
+        if (!ends(wx0, wx1, nonzero, first, last)) continue;
         any.add(first, y);
         any.add(last, y);
-        int firstLit = first;
-        while (firstLit <= last && !litAt(firstLit)) ++firstLit;
-        if (firstLit > last) continue;
-        int lastLit = last;
-        while (!litAt(lastLit)) --lastLit;
-        lit.add(firstLit, y);
-        lit.add(lastLit, y);
+        if (!ends(first, last, litAt, first, last)) continue;
+        lit.add(first, y);
+        lit.add(last, y);
     }
     if (!lit.empty()) {
         lit = LuxelRect{std::max(0, lit.x0 - radius), std::min(light.width - 1, lit.x1 + radius),
