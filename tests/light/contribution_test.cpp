@@ -304,6 +304,50 @@ TEST(AreaLight, VectorFormFactorGivesTheScalarBits) {
     EXPECT_GT(nonZero, 25000);
 }
 
+// The four-point form factor must give each point's one-point bits: random polygons of 3 to 70
+// corners, four points each (near, far, on an edge's line, at a corner) with their own normals, and
+// polygons wound twice round, whose totals pass 2 pi close under them (q3map2 then gives 0).
+TEST(AreaLight, FourPointFormFactorGivesEachPointsBits) {
+    std::mt19937 rng(1414);
+    std::uniform_real_distribution<float> unit(-1, 1);
+    int nonZero = 0, brokenNear = 0;
+    for (int trial = 0; trial < 12000; ++trial) {
+        const int corners = 3 + trial % 68;
+        const bool twice = trial % 5 == 4;
+        const float size = 1 + 200 * (unit(rng) + 1);
+        std::vector<Vec3> winding;
+        for (int i = 0; i < corners; ++i) {
+            const float a = (twice ? 4 : 2) * float(kPiD) * float(i) / float(corners);
+            winding.push_back({size * std::cos(a), size * std::sin(a), trial % 3 == 0 ? size * 0.2f * unit(rng) : 0.0f});
+        }
+        FormFactorPoints points;
+        Vec3 at[4], normal[4];
+        for (int l = 0; l < 4; ++l) {
+            at[l] = Vec3{unit(rng), unit(rng), unit(rng)} * (size * ((trial + l) % 7 == 0 ? 40.0f : 3.0f));
+            if (twice && l == 0) at[l] = Vec3{0, 0, size * 0.01f};
+            if ((trial + l) % 11 == 0) at[l] = winding[0] + (winding[1] - winding[0]) * 2.0f;
+            if ((trial + l) % 13 == 0) at[l] = winding[l % corners];
+            normal[l] = normalize(Vec3{unit(rng), unit(rng), unit(rng)} + Vec3{0, 0, 0.01f});
+            if (twice && l == 0) normal[l] = {0, 0, 1};
+            points.x[l] = at[l].x, points.y[l] = at[l].y, points.z[l] = at[l].z;
+            points.nx[l] = normal[l].x, points.ny[l] = normal[l].y, points.nz[l] = normal[l].z;
+        }
+        float four[4];
+        pointToPolygonFormFactor4(points, winding, four);
+        for (int l = 0; l < 4; ++l) {
+            const float one = pointToPolygonFormFactorScalar(at[l], normal[l], winding);
+            uint32_t fb, ob;
+            std::memcpy(&fb, &four[l], 4);
+            std::memcpy(&ob, &one, 4);
+            ASSERT_EQ(fb, ob) << "trial " << trial << " lane " << l << ": " << four[l] << " vs " << one;
+            nonZero += one != 0;
+            brokenNear += twice && l == 0 && one == 0;
+        }
+    }
+    EXPECT_GT(nonZero, 40000);
+    EXPECT_GT(brokenNear, 1000);
+}
+
 TEST(AreaLight, FormFactorMatchesAnalyticSquare) {
     const float h = 100;
     std::vector<Vec3> square{{-50, -50, h}, {-50, 50, h}, {50, 50, h}, {50, -50, h}};

@@ -188,6 +188,7 @@ struct SampleLanes {
 // left for the form factor (areaLightFormFactorAdd), `settled` those the lanes decide.
 struct AreaLightLanes {
     alignas(16) float pushedX[4], pushedY[4], pushedZ[4], dist[4], dirX[4], dirY[4], dirZ[4];
+    alignas(16) float factor[4];  // the form factors, once the lanes lit after the PVS ask for them
     int candidate = 0;
     int settled = 0;
 };

@@ -139,6 +139,66 @@ float pointToPolygonFormFactorScalar(Vec3 point, Vec3 normal, std::span<const Ve
     return static_cast<float>(total / (2.0 * kPiD));
 }
 
+void pointToPolygonFormFactor4(const FormFactorPoints& points, std::span<const Vec3> winding, float out[4]) {
+    const size_t n = winding.size();
+#if defined(__SSE2__)
+    if (n < 3) {
+        _mm_storeu_ps(out, _mm_setzero_ps());
+        return;
+    }
+    const __m128 px = _mm_load_ps(points.x), py = _mm_load_ps(points.y), pz = _mm_load_ps(points.z);
+    const __m128 nx = _mm_load_ps(points.nx), ny = _mm_load_ps(points.ny), nz = _mm_load_ps(points.nz);
+    // Corner k's offset from each point, and its squared length.
+    auto offset = [&](size_t k, __m128& x, __m128& y, __m128& z, __m128& s) {
+        x = _mm_sub_ps(_mm_set1_ps(winding[k].x), px);
+        y = _mm_sub_ps(_mm_set1_ps(winding[k].y), py);
+        z = _mm_sub_ps(_mm_set1_ps(winding[k].z), pz);
+        s = squaredLengths(x, y, z);
+    };
+    __m128 ax, ay, az, a2, fx, fy, fz, f2;
+    offset(0, fx, fy, fz, f2);
+    ax = fx, ay = fy, az = fz, a2 = f2;
+    // Each lane's total as two pairs of doubles, and whether it has shown a broken polygon.
+    __m128d totalLo = _mm_setzero_pd(), totalHi = _mm_setzero_pd();
+    __m128d brokenLo = _mm_setzero_pd(), brokenHi = _mm_setzero_pd();
+    const __m128d over = _mm_set1_pd(kBrokenTotal), under = _mm_set1_pd(-kBrokenTotal);
+    for (size_t i = 1; i <= n; ++i) {
+        __m128 bx, by, bz, b2;
+        if (i == n)
+            bx = fx, by = fy, bz = fz, b2 = f2;
+        else
+            offset(i, bx, by, bz, b2);
+        const __m128 cx = _mm_sub_ps(_mm_mul_ps(ay, bz), _mm_mul_ps(az, by));
+        const __m128 cy = _mm_sub_ps(_mm_mul_ps(az, bx), _mm_mul_ps(ax, bz));
+        const __m128 cz = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
+        const __m128 c2 = squaredLengths(cx, cy, cz);
+        const __m128 limit = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(1e-8f), a2), b2);
+        const __m128 counts = _mm_and_ps(_mm_cmpge_ps(c2, limit), _mm_cmpgt_ps(c2, _mm_setzero_ps()));
+        const __m128 sine = _mm_sqrt_ps(c2);
+        const __m128 ab = _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+        const __m128 nc = _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, cx), _mm_mul_ps(ny, cy)), _mm_mul_ps(nz, cz));
+        const __m128 cosine = _mm_div_ps(nc, sine);
+        const __m128 angle = atan2NonNegative4(sine, ab);
+        // addEdge on each lane: an edge that does not count adds a zero (a total is never -0).
+        const __m128d lo = _mm_mul_pd(_mm_cvtps_pd(cosine), _mm_cvtps_pd(angle));
+        const __m128d hi = _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(cosine, cosine)), _mm_cvtps_pd(_mm_movehl_ps(angle, angle)));
+        totalLo = _mm_add_pd(totalLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(counts, counts)), lo));
+        totalHi = _mm_add_pd(totalHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(counts, counts)), hi));
+        brokenLo = _mm_or_pd(brokenLo, _mm_or_pd(_mm_cmpgt_pd(totalLo, over), _mm_cmplt_pd(totalLo, under)));
+        brokenHi = _mm_or_pd(brokenHi, _mm_or_pd(_mm_cmpgt_pd(totalHi, over), _mm_cmplt_pd(totalHi, under)));
+        ax = bx, ay = by, az = bz, a2 = b2;
+    }
+    const __m128d turn = _mm_set1_pd(2.0 * kPiD);
+    const __m128d lo = _mm_andnot_pd(brokenLo, _mm_div_pd(totalLo, turn));
+    const __m128d hi = _mm_andnot_pd(brokenHi, _mm_div_pd(totalHi, turn));
+    _mm_storeu_ps(out, _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi)));
+#else
+    for (int l = 0; l < 4; ++l)
+        out[l] = pointToPolygonFormFactorScalar({points.x[l], points.y[l], points.z[l]},
+                                                {points.nx[l], points.ny[l], points.nz[l]}, winding);
+#endif
+}
+
 float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> winding) {
 #if defined(__SSE2__)
     const size_t n = winding.size();

@@ -20,6 +20,14 @@ float pointToPolygonFormFactor(Vec3 point, Vec3 normal, std::span<const Vec3> wi
 // The one-edge-at-a-time form: the reference for the vector form, and its fallback.
 float pointToPolygonFormFactorScalar(Vec3 point, Vec3 normal, std::span<const Vec3> winding);
 
+// Four points, each with its normal, as lanes of their coordinates.
+struct FormFactorPoints {
+    alignas(16) float x[4], y[4], z[4], nx[4], ny[4], nz[4];
+};
+// pointToPolygonFormFactor at four points at once: `out[l]` has the bits of the one-point form at
+// point l. The lanes walk the polygon's edges together, so a point costs a quarter of an edge.
+void pointToPolygonFormFactor4(const FormFactorPoints& points, std::span<const Vec3> winding, float out[4]);
+
 namespace detail {
 
 // area x receiver cosine x emitter cosine / (pi d^2), every factor bounded over the polygon, from

@@ -184,10 +184,9 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
 // -fast bound: the exact form factor, and for a two-sided emitter seen from its back the point
 // behind it that the shadow ray aims at. `target`, `dist` and `dir` come in as those towards the
 // emitter's origin.
-[[gnu::always_inline]] inline float areaLightFormFactorAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided,
-                                                           float envelope, const LightingEnv& env, Vec3 pushed,
+[[gnu::always_inline]] inline float areaLightAddFromFactor(const Light& light, float factor, Vec3 p, Vec3 n,
+                                                           bool twoSided, float envelope, const LightingEnv& env,
                                                            Vec3& target, float& dist, Vec3& dir) {
-    float factor = pointToPolygonFormFactor(pushed, n, light.winding);
     if (factor == 0) return 0;
     if (factor < 0) {
         if (!(twoSided || light.twoSided)) return 0;
@@ -201,6 +200,13 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     const float add = factor * light.add;
     if (add <= 0 || ((light.fast || env.settings.forceFast) && add <= light.falloffTolerance)) return 0;
     return add;
+}
+
+[[gnu::always_inline]] inline float areaLightFormFactorAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided,
+                                                           float envelope, const LightingEnv& env, Vec3 pushed,
+                                                           Vec3& target, float& dist, Vec3& dir) {
+    return areaLightAddFromFactor(light, pointToPolygonFormFactor(pushed, n, light.winding), p, n, twoSided, envelope,
+                                  env, target, dist, dir);
 }
 
 // q3map2's area light at a luxel or vertex before occlusion: the light's amount (0 when it sends
@@ -253,9 +259,8 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
 }
 
 // areaLightAtGridPoint's end without -faster, once the point is pushed off the emitter's plane and
-// past the -fast bound: the exact form factor with the direction to the light as the normal.
-[[gnu::always_inline]] inline float areaLightGridFormFactorAdd(const Light& light, Vec3 pushed, Vec3 dir) {
-    float factor = pointToPolygonFormFactor(pushed, dir, light.winding);
+// past the -fast bound: from the exact form factor with the direction to the light as the normal.
+[[gnu::always_inline]] inline float areaLightGridAddFromFactor(const Light& light, float factor) {
     if (factor == 0) return 0;
     if (factor < 0) {
         if (!light.twoSided) return 0;
@@ -276,7 +281,7 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     if (!light.twoSided && d < -1.0f) return 0;
     const Vec3 pushed = (d > -8.0f && d < 8.0f) ? origin + light.normal * (8.0f - d) : origin;
     if (surelyBelowFastTolerance(light, pushed, dir, env)) return 0;
-    return areaLightGridFormFactorAdd(light, pushed, dir);
+    return areaLightGridAddFromFactor(light, pointToPolygonFormFactor(pushed, dir, light.winding));
 }
 
 }  // namespace
@@ -434,13 +439,24 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
     bool lastCulled = false;
     size_t first = 0;
     // Four samples at a time (point lights, and area lights up to their form factor); a lane the
-    // lanes leave open takes the scalar path below. `laneAdd` gives a candidate lane's light and
-    // may move the point its ray aims at, with that ray's distance and direction.
-    auto byLanes = [&](auto& lanes, auto makeLanes, auto laneAdd) {
+    // lanes leave open takes the scalar path below. `prepare` gets the lanes still lit after the
+    // PVS; `laneAdd` gives such a lane's light and may move the point its ray aims at, with that
+    // ray's distance and direction.
+    auto byLanes = [&](auto& lanes, auto makeLanes, auto prepare, auto laneAdd) {
         const SamplePoint* four[4];
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
             makeLanes(four, lanes);
+            int lit = 0;
+            for (int l = 0; l < 4; ++l) {
+                if (!(lanes.settled & lanes.candidate & (1 << l))) continue;
+                if (four[l]->cluster != lastCluster) {
+                    lastCluster = four[l]->cluster;
+                    lastCulled = pvsCulledInline(light, four[l]->cluster, env);
+                }
+                if (!lastCulled) lit |= 1 << l;
+            }
+            if (lit) prepare(four, lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
                 if (!(lanes.settled & bit)) {
@@ -448,14 +464,9 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
                                            out, dirs, traced);
                     continue;
                 }
-                if (!(lanes.candidate & bit)) continue;
+                if (!(lit & bit)) continue;
                 const uint32_t i = which[first + size_t(l)];
                 const SamplePoint& sample = *four[l];
-                if (sample.cluster != lastCluster) {
-                    lastCluster = sample.cluster;
-                    lastCulled = pvsCulledInline(light, sample.cluster, env);
-                }
-                if (lastCulled) continue;
                 Vec3 target = light.origin, dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
                 float dist = lanes.dist[l];
                 const float add = laneAdd(lanes, l, sample, target, dist, dir);
@@ -477,6 +488,7 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
             [&](const SamplePoint* const* four, PointLightLanes& ln) {
                 pointLightLanes(light, env.settings, envelope, four, ln);
             },
+            [](const SamplePoint* const*, PointLightLanes&) {},
             [](const PointLightLanes& ln, int l, const SamplePoint&, Vec3&, float&, Vec3&) { return ln.add[l]; });
     }
     if (area && !env.settings.faster) {
@@ -484,10 +496,17 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
         byLanes(
             lanes,
             [&](const SamplePoint* const* four, AreaLightLanes& ln) { areaLightLanes(light, env, envelope, four, ln); },
+            [&](const SamplePoint* const* four, AreaLightLanes& ln) {
+                FormFactorPoints at;
+                for (int l = 0; l < 4; ++l) {
+                    at.x[l] = ln.pushedX[l], at.y[l] = ln.pushedY[l], at.z[l] = ln.pushedZ[l];
+                    at.nx[l] = four[l]->normal.x, at.ny[l] = four[l]->normal.y, at.nz[l] = four[l]->normal.z;
+                }
+                pointToPolygonFormFactor4(at, light.winding, ln.factor);
+            },
             [&](const AreaLightLanes& ln, int l, const SamplePoint& sample, Vec3& target, float& dist, Vec3& dir) {
-                const Vec3 pushed{ln.pushedX[l], ln.pushedY[l], ln.pushedZ[l]};
-                return areaLightFormFactorAdd(light, sample.origin, sample.normal, sample.twoSided, envelope, env,
-                                              pushed, target, dist, dir);
+                return areaLightAddFromFactor(light, ln.factor[l], sample.origin, sample.normal, sample.twoSided,
+                                              envelope, env, target, dist, dir);
             });
     }
     for (const uint32_t i : which.subspan(first)) {
@@ -542,12 +561,24 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
     bool lastCulled = false;
     size_t first = 0;
     // Four points at a time (point lights, and area lights up to their form factor); a lane the
-    // lanes leave open takes the scalar path below. `laneAdd` gives a candidate lane's light.
-    auto byLanes = [&](auto& lanes, auto makeLanes, auto laneAdd) {
+    // lanes leave open takes the scalar path below. `prepare` gets the lanes still lit after the
+    // PVS; `laneAdd` gives such a lane's light.
+    auto byLanes = [&](auto& lanes, auto makeLanes, auto prepare, auto laneAdd) {
         const Vec3* four[4];
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &origins[which[first + size_t(l)]];
             makeLanes(four, lanes);
+            int lit = 0;
+            for (int l = 0; l < 4; ++l) {
+                if (!(lanes.settled & lanes.candidate & (1 << l))) continue;
+                const int cluster = clusters[which[first + size_t(l)]];
+                if (cluster != lastCluster) {
+                    lastCluster = cluster;
+                    lastCulled = pvsCulledInline(light, cluster, env);
+                }
+                if (!lastCulled) lit |= 1 << l;
+            }
+            if (lit) prepare(lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
                 const uint32_t p = which[first + size_t(l)];
@@ -556,12 +587,7 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
                                               std::span<const uint32_t>(&which[first + size_t(l)], 1), out, rayOf);
                     continue;
                 }
-                if (!(lanes.candidate & bit)) continue;
-                if (clusters[p] != lastCluster) {
-                    lastCluster = clusters[p];
-                    lastCulled = pvsCulledInline(light, clusters[p], env);
-                }
-                if (lastCulled) continue;
+                if (!(lit & bit)) continue;
                 const Vec3 dir{lanes.dirX[l], lanes.dirY[l], lanes.dirZ[l]};
                 const float add = laneAdd(lanes, l, dir);
                 if (add <= 0 || (fast && add <= light.falloffTolerance)) continue;
@@ -579,15 +605,21 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
         PointLightLanes lanes;
         byLanes(
             lanes, [&](const Vec3* const* four, PointLightLanes& ln) { pointLightGridLanes(light, envelope, fast, four, ln); },
-            [](const PointLightLanes& ln, int l, Vec3) { return ln.add[l]; });
+            [](PointLightLanes&) {}, [](const PointLightLanes& ln, int l, Vec3) { return ln.add[l]; });
     }
     if (area && !env.settings.faster) {
         AreaLightLanes lanes;
         byLanes(
             lanes, [&](const Vec3* const* four, AreaLightLanes& ln) { areaLightGridLanes(light, env, envelope, four, ln); },
-            [&](const AreaLightLanes& ln, int l, Vec3 dir) {
-                return areaLightGridFormFactorAdd(light, Vec3{ln.pushedX[l], ln.pushedY[l], ln.pushedZ[l]}, dir);
-            });
+            [&](AreaLightLanes& ln) {
+                FormFactorPoints at;
+                for (int l = 0; l < 4; ++l) {
+                    at.x[l] = ln.pushedX[l], at.y[l] = ln.pushedY[l], at.z[l] = ln.pushedZ[l];
+                    at.nx[l] = ln.dirX[l], at.ny[l] = ln.dirY[l], at.nz[l] = ln.dirZ[l];
+                }
+                pointToPolygonFormFactor4(at, light.winding, ln.factor);
+            },
+            [&](const AreaLightLanes& ln, int l, Vec3) { return areaLightGridAddFromFactor(light, ln.factor[l]); });
     }
     for (const uint32_t p : which.subspan(first)) {
         if (clusters[p] != lastCluster) {
