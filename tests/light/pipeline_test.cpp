@@ -393,6 +393,12 @@ TEST(PassSamples, ALaterPassLightsTheFirstPassesPoints) {
     const SurfaceLight reused = lightSurface(ctx, env, floor, layout, nullptr, later, &direct);
     ASSERT_TRUE(alone.ok && reused.ok);
     EXPECT_FALSE(alone.samples);  // kept only when asked
+    // The layout's luxels go with the samples: kept for a later pass, freed (not just emptied) when
+    // none follows, so that the next lightmap reuses their memory.
+    EXPECT_FALSE(direct.layout.luxels.empty());
+    EXPECT_EQ(alone.layout.luxels.capacity(), 0u);
+    EXPECT_EQ(alone.layout.triangles.capacity(), 0u);
+    EXPECT_FALSE(alone.layout.surfaceCoords.empty());  // what the store still reads
     EXPECT_EQ(reused.luxelCount, alone.luxelCount);
     ASSERT_EQ(reused.layers.size(), alone.layers.size());
     for (size_t k = 0; k < alone.layers.size(); ++k) EXPECT_EQ(reused.layers[k].color, alone.layers[k].color);

@@ -732,6 +732,12 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
         result.normals = downsampleMean(superNormals, w, raw.superSample, result.width, result.height);
     }
     result.ok = true;
+    // The luxels and triangles serve only this pass, unless a later one reuses the layout with the
+    // sample points: freed here, their memory lights the next lightmap instead of fresh pages.
+    if (!pass.keepSamples) {
+        std::vector<Luxel>().swap(raw.luxels);
+        std::vector<LightmapTriangle>().swap(raw.triangles);
+    }
     result.layout = std::move(raw);
     return result;
 }
