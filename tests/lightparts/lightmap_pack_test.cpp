@@ -70,6 +70,25 @@ TEST(LightmapPack, MatchingFollowsQ3map2Tolerances) {
     EXPECT_FALSE(blocksMatch(uniformBlock(5, 5, {1, 2, 3}), uniformBlock(5, 5, {1, 2, 4})));
 }
 
+// A page that refused a whole rectangle skips larger ones later, but not a smaller or flatter one:
+// on an 8 x 8 page holding 8 x 6, a 4 x 3 and then a 3 x 3 find no place, while a 3 x 2 still fits
+// the two free rows. Fast allocation (steps of one texel at these sizes) and slow agree.
+TEST(LightmapPack, RefusedRectanglesOnlySkipLargerOnes) {
+    const std::vector<LightmapBlock> blocks = {gradient(8, 6, 0), gradient(4, 3, 40), gradient(3, 3, 80),
+                                               gradient(3, 2, 120)};
+    for (const bool fast : {false, true}) {
+        PackOptions o = slow(8);
+        o.fastAllocate = fast;
+        o.collapse = false;
+        const PackedLightmaps p = packLightmaps(blocks, o);
+        ASSERT_EQ(p.pages.size(), 2u) << fast;
+        EXPECT_EQ(std::tie(p.placements[0].page, p.placements[0].x, p.placements[0].y), std::tuple(0, 0, 0)) << fast;
+        EXPECT_EQ(std::tie(p.placements[1].page, p.placements[1].x, p.placements[1].y), std::tuple(1, 0, 0)) << fast;
+        EXPECT_EQ(std::tie(p.placements[2].page, p.placements[2].x, p.placements[2].y), std::tuple(1, 4, 0)) << fast;
+        EXPECT_EQ(std::tie(p.placements[3].page, p.placements[3].x, p.placements[3].y), std::tuple(0, 0, 6)) << fast;
+    }
+}
+
 TEST(LightmapPack, FirstFitInSortedOrder) {
     std::vector<LightmapBlock> blocks = {gradient(4, 4, 0, "b"), gradient(4, 4, 100, "a"), uniformBlock(3, 3, {7, 8, 9})};
     blocks[2].sortKey = "c";

@@ -292,7 +292,8 @@ StoreResult storeLightmaps(LightContext& ctx, const std::vector<SurfaceLight>& l
     pack.twins = !deluxe;
     pack.color = ctx.color;
     pack.minLight = ctx.world.minLight;
-    PackedLightmaps packed = packLightmaps(blocks, pack);
+    PackedLightmaps packed;
+    arena.execute([&] { packed = packLightmaps(blocks, pack); });
     if (deluxe) interleaveDirectionPages(packed, blocks);
     applyPackedLightmaps(ctx.bsp, blocks, packed);
     if (final) exportPackedLightmaps(ctx, packed, log);

@@ -1,5 +1,7 @@
 #include "lightmap_pack.h"
 
+#include <oneapi/tbb/parallel_for.h>
+
 #include <algorithm>
 #include <optional>
 #include <bit>
@@ -39,6 +41,11 @@ int usedTexels(const LightmapBlock& b) {
     return n;
 }
 
+// The used texels of a block as runs of columns, row by row.
+struct TexelRun {
+    int row = 0, first = 0, length = 0;
+};
+
 // A page's used texels as one bit each, row by row: a placement test compares a block row with
 // a page row a 64-texel word at a time instead of texel by texel.
 struct Page {
@@ -47,7 +54,21 @@ struct Page {
     std::vector<uint64_t> usedBits;  // pageSize rows of wordsPerRow words
     int wordsPerRow = 0;
     int freeTexels = 0;
+    // Sizes of whole rectangles that found no place here when every position was tried. A page
+    // only fills up, so no rectangle at least as wide and as tall fits it later either.
+    std::vector<std::pair<int, int>> rectanglesRefused;
+
+    bool refuses(int width, int height) const {
+        return std::any_of(rectanglesRefused.begin(), rectanglesRefused.end(),
+                           [&](const auto& r) { return r.first <= width && r.second <= height; });
+    }
 };
+
+// True when the runs cover every texel of a width x height block.
+bool runsFillRectangle(std::span<const TexelRun> runs, int width, int height) {
+    if (runs.size() != size_t(height)) return false;
+    return std::all_of(runs.begin(), runs.end(), [&](const TexelRun& r) { return r.first == 0 && r.length == width; });
+}
 
 // q3map2 TestOutLightmapStamp for a solid block: it must lie inside the page at its full size,
 // and its one texel must be free.
@@ -55,11 +76,6 @@ bool solidStampFits(const Page& page, int pageSize, const LightmapBlock& b, int 
     if (x < 0 || y < 0 || x + b.width > pageSize || y + b.height > pageSize) return false;
     return !page.used[size_t(y) * pageSize + x];
 }
-
-// The used texels of a block as runs of columns, row by row.
-struct TexelRun {
-    int row = 0, first = 0, length = 0;
-};
 
 std::vector<TexelRun> texelRuns(const LightmapBlock& b) {
     std::vector<TexelRun> runs;
@@ -347,7 +363,7 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
     st.solidLight.assign(n, Vec3{});
     st.twin.assign(n, -1);
     const bool onLight = n > 0 && std::all_of(blocks.begin(), blocks.end(), carriesLight);
-    for (size_t i = 0; i < n; ++i) {
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const LightmapBlock& b = blocks[i];
         if (onLight) {
             // -nocollapse also keeps small and uniform lightmaps at full size.
@@ -357,7 +373,7 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
             st.solid[i] = o.collapse && blockIsSolid(b);
             st.solidTexel[i] = solidColor(b);
         }
-    }
+    });
     if (!o.collapse || !o.twins) return st;
     std::map<std::tuple<bool, int, int, int>, std::vector<size_t>> groups;
     for (size_t i = 0; i < n; ++i) {
@@ -366,7 +382,11 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
                            : std::make_tuple(false, blocks[i].width, blocks[i].height, 0)]
             .push_back(i);
     }
-    for (const auto& [key, members] : groups)
+    // Blocks of different keys never match: each key's search and merges touch its own blocks only.
+    std::vector<const std::vector<size_t>*> keys;
+    for (const auto& [key, members] : groups) keys.push_back(&members);
+    tbb::parallel_for(size_t(0), keys.size(), [&](size_t k) {
+        const std::vector<size_t>& members = *keys[k];
         for (size_t a = 0; a < members.size(); ++a) {
             const size_t i = members[a];
             if (st.twin[i] >= 0) continue;
@@ -386,6 +406,7 @@ CollapseState collapseTwins(std::span<const LightmapBlock> blocks, const PackOpt
                 }
             }
         }
+    });
     return st;
 }
 
@@ -465,12 +486,14 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         // solid or not.
         const int needed = usedTexels(b);
         const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(collapsed.merged(index));
+        const bool rectangle = !isSolid && runsFillRectangle(runs, b.width, b.height);
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
-            const Page& page = pages[p];
+            Page& page = pages[p];
             if (page.freeTexels < needed) continue;
             // Fast allocation skips pages more than 90% full and steps through positions.
             if (options.fastAllocate && page.freeTexels < pageTexels / 10) continue;
+            if (rectangle && page.refuses(b.width, b.height)) continue;
             const int xMax = isSolid ? pageSize : pageSize - b.width + 1;
             const int yMax = isSolid ? pageSize : pageSize - b.height + 1;
             const int xStep = options.fastAllocate ? std::max(1, b.width / 15) : 1;
@@ -497,6 +520,8 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
                         break;
                     }
             }
+            if (pageIndex < 0 && rectangle && xStep == 1 && yStep == 1)
+                page.rectanglesRefused.emplace_back(b.width, b.height);
         }
         if (pageIndex < 0) {
             Page fresh;
