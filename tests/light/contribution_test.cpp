@@ -318,7 +318,8 @@ TEST(AreaLight, FourPointFormFactorGivesEachPointsBits) {
         std::vector<Vec3> winding;
         for (int i = 0; i < corners; ++i) {
             const float a = (twice ? 4 : 2) * float(kPiD) * float(i) / float(corners);
-            winding.push_back({size * std::cos(a), size * std::sin(a), trial % 3 == 0 ? size * 0.2f * unit(rng) : 0.0f});
+            const float z = trial % 3 == 0 ? size * 0.2f * unit(rng) : 0.0f;
+            winding.push_back({size * std::cos(a), size * std::sin(a), z});
         }
         FormFactorPoints points;
         Vec3 at[4], normal[4];

@@ -185,7 +185,7 @@ struct SampleLanes {
 // An area light at four sample points without -faster: areaLightAdd up to its exact form factor
 // (the facing test, the emitter plane's tests, the push off it, the distance, the direction and
 // the -fast bound) by SSE lanes, in its float operations and order. `candidate` marks the lanes
-// left for the form factor (areaLightFormFactorAdd), `settled` those the lanes decide.
+// left for the form factor (areaLightAddFromFactor), `settled` those the lanes decide.
 struct AreaLightLanes {
     alignas(16) float pushedX[4], pushedY[4], pushedZ[4], dist[4], dirX[4], dirY[4], dirZ[4];
     alignas(16) float factor[4];  // the form factors, once the lanes lit after the PVS ask for them

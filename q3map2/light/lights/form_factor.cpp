@@ -180,8 +180,9 @@ void pointToPolygonFormFactor4(const FormFactorPoints& points, std::span<const V
         const __m128 cosine = _mm_div_ps(nc, sine);
         const __m128 angle = atan2NonNegative4(sine, ab);
         // addEdge on each lane: an edge that does not count adds a zero (a total is never -0).
+        const __m128 cosineHi = _mm_movehl_ps(cosine, cosine), angleHi = _mm_movehl_ps(angle, angle);
         const __m128d lo = _mm_mul_pd(_mm_cvtps_pd(cosine), _mm_cvtps_pd(angle));
-        const __m128d hi = _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(cosine, cosine)), _mm_cvtps_pd(_mm_movehl_ps(angle, angle)));
+        const __m128d hi = _mm_mul_pd(_mm_cvtps_pd(cosineHi), _mm_cvtps_pd(angleHi));
         totalLo = _mm_add_pd(totalLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(counts, counts)), lo));
         totalHi = _mm_add_pd(totalHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(counts, counts)), hi));
         brokenLo = _mm_or_pd(brokenLo, _mm_or_pd(_mm_cmpgt_pd(totalLo, over), _mm_cmplt_pd(totalLo, under)));

@@ -25,7 +25,7 @@ struct FormFactorPoints {
     alignas(16) float x[4], y[4], z[4], nx[4], ny[4], nz[4];
 };
 // pointToPolygonFormFactor at four points at once: `out[l]` has the bits of the one-point form at
-// point l. The lanes walk the polygon's edges together, so a point costs a quarter of an edge.
+// point l. The lanes walk the polygon's edges together: each edge is worked out for all four.
 void pointToPolygonFormFactor4(const FormFactorPoints& points, std::span<const Vec3> winding, float out[4]);
 
 namespace detail {

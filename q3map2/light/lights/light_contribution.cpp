@@ -181,9 +181,9 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
 }
 
 // areaLightAdd's end without -faster, once the point is pushed off the emitter's plane and past the
-// -fast bound: the exact form factor, and for a two-sided emitter seen from its back the point
-// behind it that the shadow ray aims at. `target`, `dist` and `dir` come in as those towards the
-// emitter's origin.
+// -fast bound: the light from the exact form factor `factor`, and for a two-sided emitter seen from
+// its back the point behind it that the shadow ray aims at. `target`, `dist` and `dir` come in as
+// those towards the emitter's origin.
 [[gnu::always_inline]] inline float areaLightAddFromFactor(const Light& light, float factor, Vec3 p, Vec3 n,
                                                            bool twoSided, float envelope, const LightingEnv& env,
                                                            Vec3& target, float& dist, Vec3& dir) {
@@ -202,6 +202,7 @@ std::pair<float, float> rangeAlong(Vec3 n, const Bounds& box, float offset = 0) 
     return add;
 }
 
+// The same, taking the form factor at the pushed point itself (one point at a time).
 [[gnu::always_inline]] inline float areaLightFormFactorAdd(const Light& light, Vec3 p, Vec3 n, bool twoSided,
                                                            float envelope, const LightingEnv& env, Vec3 pushed,
                                                            Vec3& target, float& dist, Vec3& dir) {
