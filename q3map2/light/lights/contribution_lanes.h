@@ -187,22 +187,28 @@ struct SampleLanes {
 // the -fast bound) by SSE lanes, in its float operations and order. `candidate` marks the lanes
 // left for the form factor (areaLightAddFromFactor), `settled` those the lanes decide.
 struct AreaLightLanes {
-    alignas(16) float pushedX[4], pushedY[4], pushedZ[4], dist[4], dirX[4], dirY[4], dirZ[4];
+    FormFactorPoints pushed;  // the pushed points, with the normals their form factors take
+    alignas(16) float dist[4], dirX[4], dirY[4], dirZ[4];
     alignas(16) float factor[4];  // the form factors, once the lanes lit after the PVS ask for them
     int candidate = 0;
     int settled = 0;
 };
 
 // The area lanes' verdicts (`keep`: past every test, `open`: a direction to take) and values.
+// `Nx`, `Ny`, `Nz`: the normals the form factors take.
 [[gnu::always_inline]] inline void storeAreaLanes(__m128 keep, __m128 open, __m128 Qx, __m128 Qy, __m128 Qz,
-                                                  const DistanceLanes& dl, AreaLightLanes& lanes) {
+                                                  __m128 Nx, __m128 Ny, __m128 Nz, const DistanceLanes& dl,
+                                                  AreaLightLanes& lanes) {
     const __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
     // A lane that is not kept is settled whatever its values; a kept one needs a direction.
     lanes.settled = _mm_movemask_ps(_mm_or_ps(_mm_andnot_ps(keep, all), open));
     lanes.candidate = _mm_movemask_ps(_mm_and_ps(keep, open));
-    _mm_store_ps(lanes.pushedX, Qx);
-    _mm_store_ps(lanes.pushedY, Qy);
-    _mm_store_ps(lanes.pushedZ, Qz);
+    _mm_store_ps(lanes.pushed.x, Qx);
+    _mm_store_ps(lanes.pushed.y, Qy);
+    _mm_store_ps(lanes.pushed.z, Qz);
+    _mm_store_ps(lanes.pushed.nx, Nx);
+    _mm_store_ps(lanes.pushed.ny, Ny);
+    _mm_store_ps(lanes.pushed.nz, Nz);
     _mm_store_ps(lanes.dist, dl.dist);
     _mm_store_ps(lanes.dirX, dl.dirX);
     _mm_store_ps(lanes.dirY, dl.dirY);
@@ -235,7 +241,7 @@ struct AreaLightLanes {
     const __m128 open = _mm_and_ps(positive, ordered);
     // surelyBelowFastTolerance at the pushed point.
     keep = _mm_andnot_ps(surelyBelowFastToleranceLanes(light, env, Qx, Qy, Qz, Nx, Ny, Nz), keep);
-    storeAreaLanes(keep, open, Qx, Qy, Qz, dl, lanes);
+    storeAreaLanes(keep, open, Qx, Qy, Qz, Nx, Ny, Nz, dl, lanes);
 }
 
 // Four grid points as lanes of x, y and z.
@@ -265,7 +271,7 @@ struct GridPointLanes {
     const __m128 ordered = _mm_and_ps(_mm_cmpord_ps(d, dl.dirX), _mm_cmpord_ps(dl.dirY, dl.dirZ));
     const __m128 open = _mm_and_ps(positive, ordered);
     keep = _mm_andnot_ps(surelyBelowFastToleranceLanes(light, env, Qx, Qy, Qz, dl.dirX, dl.dirY, dl.dirZ), keep);
-    storeAreaLanes(keep, open, Qx, Qy, Qz, dl, lanes);
+    storeAreaLanes(keep, open, Qx, Qy, Qz, dl.dirX, dl.dirY, dl.dirZ, dl, lanes);
 }
 
 // lightToGridPointsOf's point light (pointLightAtGridPoint) at four grid points.

@@ -431,6 +431,24 @@ namespace {
 
 using namespace contribution;
 
+// The lanes of `candidates` (a mask of four) whose cluster the PVS lets the light reach; a run of
+// lanes in one cluster asks once, `lastCluster` and `lastCulled` carrying the verdict between calls.
+template <typename ClusterOf>
+int lanesSeenThroughPvs(int candidates, ClusterOf clusterOf, const Light& light, const LightingEnv& env,
+                        int& lastCluster, bool& lastCulled) {
+    int seen = 0;
+    for (int l = 0; l < 4; ++l) {
+        if (!(candidates & (1 << l))) continue;
+        const int cluster = clusterOf(l);
+        if (cluster != lastCluster) {
+            lastCluster = cluster;
+            lastCulled = pvsCulledInline(light, cluster, env);
+        }
+        if (!lastCulled) seen |= 1 << l;
+    }
+    return seen;
+}
+
 template <bool area>
 void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope,
                       std::span<const std::optional<SamplePoint>> points, std::span<const uint32_t> which,
@@ -448,16 +466,10 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &*points[which[first + size_t(l)]];
             makeLanes(four, lanes);
-            int lit = 0;
-            for (int l = 0; l < 4; ++l) {
-                if (!(lanes.settled & lanes.candidate & (1 << l))) continue;
-                if (four[l]->cluster != lastCluster) {
-                    lastCluster = four[l]->cluster;
-                    lastCulled = pvsCulledInline(light, four[l]->cluster, env);
-                }
-                if (!lastCulled) lit |= 1 << l;
-            }
-            if (lit) prepare(four, lanes);
+            const int lit = lanesSeenThroughPvs(
+                lanes.settled & lanes.candidate, [&](int l) { return four[l]->cluster; }, light, env, lastCluster,
+                lastCulled);
+            if (lit) prepare(lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
                 if (!(lanes.settled & bit)) {
@@ -489,7 +501,7 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
             [&](const SamplePoint* const* four, PointLightLanes& ln) {
                 pointLightLanes(light, env.settings, envelope, four, ln);
             },
-            [](const SamplePoint* const*, PointLightLanes&) {},
+            [](PointLightLanes&) {},
             [](const PointLightLanes& ln, int l, const SamplePoint&, Vec3&, float&, Vec3&) { return ln.add[l]; });
     }
     if (area && !env.settings.faster) {
@@ -497,14 +509,7 @@ void lightToSamplesOf(const Light& light, const LightingEnv& env, float envelope
         byLanes(
             lanes,
             [&](const SamplePoint* const* four, AreaLightLanes& ln) { areaLightLanes(light, env, envelope, four, ln); },
-            [&](const SamplePoint* const* four, AreaLightLanes& ln) {
-                FormFactorPoints at;
-                for (int l = 0; l < 4; ++l) {
-                    at.x[l] = ln.pushedX[l], at.y[l] = ln.pushedY[l], at.z[l] = ln.pushedZ[l];
-                    at.nx[l] = four[l]->normal.x, at.ny[l] = four[l]->normal.y, at.nz[l] = four[l]->normal.z;
-                }
-                pointToPolygonFormFactor4(at, light.winding, ln.factor);
-            },
+            [&](AreaLightLanes& ln) { pointToPolygonFormFactor4(ln.pushed, light.winding, ln.factor); },
             [&](const AreaLightLanes& ln, int l, const SamplePoint& sample, Vec3& target, float& dist, Vec3& dir) {
                 return areaLightAddFromFactor(light, ln.factor[l], sample.origin, sample.normal, sample.twoSided,
                                               envelope, env, target, dist, dir);
@@ -569,16 +574,9 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
         for (; first + 4 <= which.size(); first += 4) {
             for (int l = 0; l < 4; ++l) four[l] = &origins[which[first + size_t(l)]];
             makeLanes(four, lanes);
-            int lit = 0;
-            for (int l = 0; l < 4; ++l) {
-                if (!(lanes.settled & lanes.candidate & (1 << l))) continue;
-                const int cluster = clusters[which[first + size_t(l)]];
-                if (cluster != lastCluster) {
-                    lastCluster = cluster;
-                    lastCulled = pvsCulledInline(light, cluster, env);
-                }
-                if (!lastCulled) lit |= 1 << l;
-            }
+            const int lit = lanesSeenThroughPvs(
+                lanes.settled & lanes.candidate, [&](int l) { return clusters[which[first + size_t(l)]]; }, light, env,
+                lastCluster, lastCulled);
             if (lit) prepare(lanes);
             for (int l = 0; l < 4; ++l) {
                 const int bit = 1 << l;
@@ -612,14 +610,7 @@ void lightToGridPointsOf(const Light& light, const LightingEnv& env, float envel
         AreaLightLanes lanes;
         byLanes(
             lanes, [&](const Vec3* const* four, AreaLightLanes& ln) { areaLightGridLanes(light, env, envelope, four, ln); },
-            [&](AreaLightLanes& ln) {
-                FormFactorPoints at;
-                for (int l = 0; l < 4; ++l) {
-                    at.x[l] = ln.pushedX[l], at.y[l] = ln.pushedY[l], at.z[l] = ln.pushedZ[l];
-                    at.nx[l] = ln.dirX[l], at.ny[l] = ln.dirY[l], at.nz[l] = ln.dirZ[l];
-                }
-                pointToPolygonFormFactor4(at, light.winding, ln.factor);
-            },
+            [&](AreaLightLanes& ln) { pointToPolygonFormFactor4(ln.pushed, light.winding, ln.factor); },
             [&](const AreaLightLanes& ln, int l, Vec3) { return areaLightGridAddFromFactor(light, ln.factor[l]); });
     }
     for (const uint32_t p : which.subspan(first)) {
