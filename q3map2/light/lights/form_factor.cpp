@@ -46,27 +46,36 @@ struct EdgeLanes {
     __m128 ax, ay, az, a2, bx, by, bz, b2;
 };
 
-// Each lane's EdgeTerm (cosine, angle, counts), in Vec3's order of operations.
-void edgeTerms4(Vec3 normal, const EdgeLanes& e, EdgeTerm out[4]) {
+__m128 squaredLengths(__m128 x, __m128 y, __m128 z) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
+}
+
+// edgeTerm on four lanes, each with its own normal, in Vec3's order of operations: the cosine
+// term, the angle, and a mask of the lanes whose edge counts.
+struct EdgeTermLanes {
+    __m128 cosine, angle, counts;
+};
+EdgeTermLanes edgeTermLanes(__m128 nx, __m128 ny, __m128 nz, const EdgeLanes& e) {
     const __m128 cx = _mm_sub_ps(_mm_mul_ps(e.ay, e.bz), _mm_mul_ps(e.az, e.by));
     const __m128 cy = _mm_sub_ps(_mm_mul_ps(e.az, e.bx), _mm_mul_ps(e.ax, e.bz));
     const __m128 cz = _mm_sub_ps(_mm_mul_ps(e.ax, e.by), _mm_mul_ps(e.ay, e.bx));
-    const __m128 c2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(cx, cx), _mm_mul_ps(cy, cy)), _mm_mul_ps(cz, cz));
+    const __m128 c2 = squaredLengths(cx, cy, cz);
     const __m128 limit = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(1e-8f), e.a2), e.b2);
     const __m128 counts = _mm_and_ps(_mm_cmpge_ps(c2, limit), _mm_cmpgt_ps(c2, _mm_setzero_ps()));
     const __m128 sine = _mm_sqrt_ps(c2);
     const __m128 ab = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e.ax, e.bx), _mm_mul_ps(e.ay, e.by)), _mm_mul_ps(e.az, e.bz));
-    const __m128 nc = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(normal.x), cx), _mm_mul_ps(_mm_set1_ps(normal.y), cy)),
-                                 _mm_mul_ps(_mm_set1_ps(normal.z), cz));
-    alignas(16) float cosine[4], angle[4];
-    _mm_store_ps(cosine, _mm_div_ps(nc, sine));
-    _mm_store_ps(angle, atan2NonNegative4(sine, ab));
-    const int mask = _mm_movemask_ps(counts);
-    for (int k = 0; k < 4; ++k) out[k] = {cosine[k], angle[k], (mask >> k & 1) != 0};
+    const __m128 nc = _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, cx), _mm_mul_ps(ny, cy)), _mm_mul_ps(nz, cz));
+    return {_mm_div_ps(nc, sine), atan2NonNegative4(sine, ab), counts};
 }
 
-__m128 squaredLengths(__m128 x, __m128 y, __m128 z) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
+// Each lane's EdgeTerm (cosine, angle, counts) for one normal.
+void edgeTerms4(Vec3 normal, const EdgeLanes& e, EdgeTerm out[4]) {
+    const EdgeTermLanes t = edgeTermLanes(_mm_set1_ps(normal.x), _mm_set1_ps(normal.y), _mm_set1_ps(normal.z), e);
+    alignas(16) float cosine[4], angle[4];
+    _mm_store_ps(cosine, t.cosine);
+    _mm_store_ps(angle, t.angle);
+    const int mask = _mm_movemask_ps(t.counts);
+    for (int k = 0; k < 4; ++k) out[k] = {cosine[k], angle[k], (mask >> k & 1) != 0};
 }
 
 // Triangles and quads, the usual emitters, in registers: the corner offsets in lanes 0 .. n-1,
@@ -168,17 +177,7 @@ void pointToPolygonFormFactor4(const FormFactorPoints& points, std::span<const V
             bx = fx, by = fy, bz = fz, b2 = f2;
         else
             offset(i, bx, by, bz, b2);
-        const __m128 cx = _mm_sub_ps(_mm_mul_ps(ay, bz), _mm_mul_ps(az, by));
-        const __m128 cy = _mm_sub_ps(_mm_mul_ps(az, bx), _mm_mul_ps(ax, bz));
-        const __m128 cz = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
-        const __m128 c2 = squaredLengths(cx, cy, cz);
-        const __m128 limit = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(1e-8f), a2), b2);
-        const __m128 counts = _mm_and_ps(_mm_cmpge_ps(c2, limit), _mm_cmpgt_ps(c2, _mm_setzero_ps()));
-        const __m128 sine = _mm_sqrt_ps(c2);
-        const __m128 ab = _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
-        const __m128 nc = _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, cx), _mm_mul_ps(ny, cy)), _mm_mul_ps(nz, cz));
-        const __m128 cosine = _mm_div_ps(nc, sine);
-        const __m128 angle = atan2NonNegative4(sine, ab);
+        const auto [cosine, angle, counts] = edgeTermLanes(nx, ny, nz, EdgeLanes{ax, ay, az, a2, bx, by, bz, b2});
         // addEdge on each lane: an edge that does not count adds a zero (a total is never -0).
         const __m128 cosineHi = _mm_movehl_ps(cosine, cosine), angleHi = _mm_movehl_ps(angle, angle);
         const __m128d lo = _mm_mul_pd(_mm_cvtps_pd(cosine), _mm_cvtps_pd(angle));
