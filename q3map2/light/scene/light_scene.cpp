@@ -193,7 +193,7 @@ void buildScene(LightContext& ctx) {
     // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
     // beside it is stopped (trace_pieces.h). Sun rays meet solid where its walk does.
     TraceLeafContents contents;
-    std::vector<SceneSurface> pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents, ctx.threads);
+    CasterPieces pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents, ctx.threads);
     auto skySolid = std::make_shared<const SkyRaySolid>(ctx.bsp, contents);
     options.skySolidBetween = [skySolid](Vec3 from, Vec3 to) { return skySolid->stops(from, to); };
     options.skyHullClear = [skySolid](std::span<const Vec3> points) { return skySolid->hullWalk(points); };
@@ -201,7 +201,7 @@ void buildScene(LightContext& ctx) {
         return skySolid->stopsFrom(hull, from, to);
     };
     options.solidShell = solidShellOf(ctx.bsp.models.empty() ? nullptr : &ctx.bsp.models[0], *tree);
-    ctx.scene = std::make_unique<TraceScene>(pieces, options);
+    ctx.scene = std::make_unique<TraceScene>(pieces.surfaces, options, pieces.forSunOnly);
 }
 
 void createLights(LightContext& ctx, Log& log) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <span>
 #include <utility>
 
 namespace q3::light {
@@ -291,12 +292,18 @@ void appendPieces(CornerSpan w, bool exact, SceneSurface& out) {
     }
 }
 
+// A caster that stops every ray meeting it: not sky (sun rays end there), not a filter.
+bool opaqueCaster(const SceneSurface& s) {
+    return !s.shader || (!s.shader->sky && !s.shader->alphaShadow && !s.shader->lightFilter);
+}
+
 }  // namespace
 
-std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
-                                            const TraceSceneOptions& options, TraceLeafContents* contents,
-                                            int threads) {
-    std::vector<SceneSurface> out(surfaces.size());
+CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
+                               const TraceSceneOptions& options, TraceLeafContents* contents, int threads) {
+    CasterPieces result;
+    std::vector<SceneSurface>& out = result.surfaces;
+    out.resize(surfaces.size());
     const size_t leafCount = bsp.nodes.empty() ? 0 : bsp.leafs.size();
     // Every caster's triangles filtered down the tree, each surface on its own (in parallel); the
     // results are gathered in surface order below, so the leaves hold what the sequential filter
@@ -307,7 +314,7 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
     // Per leaf: whether it holds pieces, whether q3map2 subdivides it, and the windings its
     // subdivision emits, in order.
     std::vector<uint8_t> holdsPieces(leafCount, 0), subdivided(leafCount, 0);
-    std::vector<EmittedPieces> emitted(leafCount);
+    std::vector<EmittedPieces> emitted(leafCount), emittedForSun(leafCount);
     auto filterSurface = [&](size_t i) {
         const SceneSurface& s = surfaces[i];
         if (!TraceScene::castsShadow(s, options)) {
@@ -347,13 +354,24 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
                 filterIntoLeaves(bsp, std::move(w), normal, dist, leafCount, filtered[i]);
         }
     };
+    // An opaque piece in a leaf outside every cluster matters only to rays that pass through that
+    // leaf, as q3map2 tests a leaf's triangles only for the rays it walks through: left among the
+    // others, it also stopped rays that graze the leaf. Point-light rays stop at any such leaf
+    // (bsp_tree.h), so they never need it; sun rays stop there too unless the tracer split the
+    // leaf (sky_ray_solid.h), and only those pieces are kept, for sun rays alone.
     auto subdivide = [&](size_t l) {
+        const bool split = leafSplit(leaves[l].windings, leaves[l].depth).split;
         if (contents) {
             holdsPieces[l] = leaves[l].windings.empty() ? 0 : 1;
-            subdivided[l] = leafSplit(leaves[l].windings, leaves[l].depth).split ? 1 : 0;
+            subdivided[l] = split ? 1 : 0;
         }
-        subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth,
-                      [&emitted, l](Winding&& w) { emitted[l].add(w); });
+        const bool outside = bsp.leafs[l].cluster == -1;
+        subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth, [&](Winding&& w) {
+            if (!outside || !opaqueCaster(surfaces[w.surface]))
+                emitted[l].add(w);
+            else if (split)
+                emittedForSun[l].add(w);
+        });
     };
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
@@ -372,21 +390,38 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
     });
     // Each surface's pieces in the order the sequential emission gives (direct windings exist only
     // without a tree, emitted ones only with one), fanned out surface by surface in parallel.
-    std::vector<std::vector<CornerSpan>> bySurface(surfaces.size());
+    std::vector<std::vector<CornerSpan>> bySurface(surfaces.size()), forSunBySurface(surfaces.size());
     for (const std::vector<Winding>& list : direct)
         for (const Winding& w : list) bySurface[w.surface].push_back({w.v.begin(), w.v.size()});
-    for (const EmittedPieces& leaf : emitted)
-        for (const EmittedPieces::Entry& w : leaf.windings)
-            bySurface[w.surface].push_back({leaf.corners.data() + w.first, w.count});
-    auto fan = [&](size_t i) {
-        const SceneSurface& s = surfaces[i];
+    auto gather = [](const std::vector<EmittedPieces>& leaves, std::vector<std::vector<CornerSpan>>& to) {
+        for (const EmittedPieces& leaf : leaves)
+            for (const EmittedPieces::Entry& w : leaf.windings)
+                to[w.surface].push_back({leaf.corners.data() + w.first, w.count});
+    };
+    gather(emitted, bySurface);
+    gather(emittedForSun, forSunBySurface);
+    bool anyForSun = false;
+    for (const std::vector<CornerSpan>& list : forSunBySurface) anyForSun = anyForSun || !list.empty();
+    if (anyForSun) result.forSunOnly.resize(surfaces.size());
+    auto fanInto = [&](const SceneSurface& s, std::span<const CornerSpan> windings, SceneSurface& to) {
         const bool exact = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !s.shader->sky;
         size_t fans = 0;  // an upper bound of the triangles, so that the arrays grow once
-        for (const CornerSpan& w : bySurface[i]) fans += w.count >= 3 ? w.count - 2 : 0;
-        out[i].xyz.reserve(fans * 3);
-        if (exact) out[i].st.reserve(fans * 6);
-        out[i].triangles.reserve(fans * 3);
-        for (const CornerSpan& w : bySurface[i]) appendPieces(w, exact, out[i]);
+        for (const CornerSpan& w : windings) fans += w.count >= 3 ? w.count - 2 : 0;
+        to.xyz.reserve(fans * 3);
+        if (exact) to.st.reserve(fans * 6);
+        to.triangles.reserve(fans * 3);
+        for (const CornerSpan& w : windings) appendPieces(w, exact, to);
+    };
+    auto fan = [&](size_t i) {
+        fanInto(surfaces[i], bySurface[i], out[i]);
+        if (forSunBySurface[i].empty()) return;
+        SceneSurface& sun = result.forSunOnly[i];
+        sun.surfaceNum = out[i].surfaceNum;
+        sun.shader = out[i].shader;
+        sun.castShadows = out[i].castShadows;
+        sun.skyIndex = out[i].skyIndex;
+        sun.isPatch = out[i].isPatch;
+        fanInto(surfaces[i], forSunBySurface[i], sun);
     };
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
@@ -397,7 +432,7 @@ std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& sur
         contents->holdsPieces = std::move(holdsPieces);
         contents->subdivided = std::move(subdivided);
     }
-    return out;
+    return result;
 }
 
 }  // namespace q3::light

@@ -22,14 +22,24 @@ constexpr float kTraceBaryEpsilon = 0.01f;
 // below this (COPLANAR_EPSILON): a piece whose cross product is shorter is never hit.
 constexpr float kTraceCoplanarEpsilon = 0.25f;
 
+struct CasterPieces {
+    // The input surfaces with each caster's triangles replaced by its pieces.
+    std::vector<SceneSurface> surfaces;
+    // Per input surface, its opaque pieces in leaves outside every cluster that the tracer split:
+    // only sun rays can meet them (TraceScene's sunOnly). Empty when there are none at all.
+    std::vector<SceneSurface> forSunOnly;
+};
+
 // `surfaces` with the triangles of every caster replaced by its trace pieces, each grown by the
 // barycentric slack (filtering surfaces keep their exact pieces: q3map2 reads their texture only
 // inside the triangle; only theirs keep texture coordinates). Surfaces that cast nothing are
-// returned unchanged. Without BSP nodes the triangles are only grown. `contents`, when given,
-// receives what each BSP leaf holds. Surfaces are filtered and leaves subdivided on `threads`
-// threads (0: one per core); the result does not depend on their number.
-std::vector<SceneSurface> traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
-                                            const TraceSceneOptions& options, TraceLeafContents* contents = nullptr,
-                                            int threads = 0);
+// returned unchanged. Opaque pieces in leaves outside every cluster, which only rays through such
+// a leaf could meet and which the solid tests stop there, are left out, or kept apart for sun rays
+// where the tracer split the leaf. Without BSP nodes the triangles are only grown. `contents`,
+// when given, receives what each BSP leaf holds. Surfaces are filtered and leaves subdivided on
+// `threads` threads (0: one per core); the result does not depend on their number.
+CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
+                               const TraceSceneOptions& options, TraceLeafContents* contents = nullptr,
+                               int threads = 0);
 
 }  // namespace q3::light

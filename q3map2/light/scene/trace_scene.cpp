@@ -183,6 +183,7 @@ struct TraceScene::EmbreeState {
     RTCScene scene = nullptr;       // every caster except sky surfaces
     RTCScene skyScene = nullptr;    // sky surfaces
     RTCScene shellScene = nullptr;  // the solid shell's cells, when there are any
+    RTCScene sunOnlyScene = nullptr;  // opaque casters that only sun rays meet, when there are any
 };
 
 bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOptions& options) {
@@ -197,7 +198,8 @@ bool TraceScene::castsShadow(const SceneSurface& surface, const TraceSceneOption
     return true;
 }
 
-TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options)
+TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options,
+                       const std::vector<SceneSurface>& sunOnly)
     : embree_(std::make_unique<EmbreeState>()),
       solidBetween_(options.solidBetween),
       skySolidBetween_(options.skySolidBetween),
@@ -212,12 +214,16 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
     embree_->skyScene = newScene(embree_->device);
 
     groupOfBit_ = {1};
-    for (const SceneSurface& s : surfaces) {
+    auto addGroupOf = [this](const SceneSurface& s) {
         const int group = std::abs(s.castShadows);
-        if (castsShadow(s, options) && group != 1 && groupOfBit_.size() < 32 &&
+        if (group != 1 && groupOfBit_.size() < 32 &&
             std::find(groupOfBit_.begin(), groupOfBit_.end(), group) == groupOfBit_.end())
             groupOfBit_.push_back(group);
-    }
+    };
+    for (const SceneSurface& s : surfaces)
+        if (castsShadow(s, options)) addGroupOf(s);
+    for (const SceneSurface& s : sunOnly)
+        if (!s.triangles.empty()) addGroupOf(s);
     // A caster's triangles as an Embree geometry with the given mask.
     auto newTriangles = [this](const SceneSurface& s, uint32_t mask) {
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -290,8 +296,17 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
             rec.skyIndex = s->skyIndex;
             records_.push_back(std::move(rec));
         }
+    for (const SceneSurface& s : sunOnly) {
+        if (s.triangles.empty()) continue;
+        if (!embree_->sunOnlyScene) embree_->sunOnlyScene = newScene(embree_->device);
+        RTCGeometry geom = newTriangles(s, groupBit(s.castShadows));
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(embree_->sunOnlyScene, geom);
+        rtcReleaseGeometry(geom);
+    }
     rtcCommitScene(embree_->scene);
     rtcCommitScene(embree_->skyScene);
+    if (embree_->sunOnlyScene) rtcCommitScene(embree_->sunOnlyScene);
     if (!shell_.empty() && solidBetweenInHull_)
         embree_->shellScene = newShellScene(embree_->device, shell_);
     if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
@@ -302,6 +317,7 @@ TraceScene::~TraceScene() {
     if (embree_->scene) rtcReleaseScene(embree_->scene);
     if (embree_->skyScene) rtcReleaseScene(embree_->skyScene);
     if (embree_->shellScene) rtcReleaseScene(embree_->shellScene);
+    if (embree_->sunOnlyScene) rtcReleaseScene(embree_->sunOnlyScene);
     if (embree_->device) rtcReleaseDevice(embree_->device);
 }
 
@@ -385,11 +401,22 @@ Vec3 TraceScene::traceSingle(const ShadowRay& r) const {
     ray.mask = casterMask(r.mask, r.toSky);
     rtcOccluded1(embree_->scene, &ctx.base, &ray);
     if (ray.tfar < 0) return {};  // Embree marks an occluded ray with tfar = -inf
+    if (r.toSky && blockedForSunOnly(r, tfar)) return {};
     // Open rays still stop at structural solid: sun rays up to their sky, the others to their end.
     if (!r.clearOfSolid && (r.toSky ? skyRayCrossesSolid(r.from, r.from + r.direction * tfar)
                                     : crossesSolid(r.from, r.from + r.direction * r.tfar)))
         return {};
     return hits.empty() ? Vec3{1, 1, 1} : translucentProduct(sortedHits(hits));
+}
+
+bool TraceScene::blockedForSunOnly(const ShadowRay& r, float tfar) const {
+    if (!embree_->sunOnlyScene) return false;
+    RTCIntersectContext plain;
+    rtcInitIntersectContext(&plain);
+    RTCRay ray = makeRay(r, tfar);
+    ray.mask = casterMask(r.mask, true);
+    rtcOccluded1(embree_->sunOnlyScene, &plain, &ray);
+    return ray.tfar < 0;
 }
 
 namespace {
@@ -574,21 +601,24 @@ void TraceScene::traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out
     ctx.records = &records_;
     ctx.hits = &hits;
     rtcOccluded1M(embree_->scene, &ctx.base, occlusionBuffer, static_cast<unsigned>(numOcclusion), sizeof(RTCRay));
-    if (!skyRecords_.empty() && skySegmentBit_ == 0 && numSegments > 0) {
-        // Sky surfaces block point-light segments like walls: asked only of the segments the casters
-        // leave open (a blocked ray's translucent crossings no longer matter).
+    // The rays of buffer slots [first, last) that the casters leave open, asked of another scene
+    // (a blocked ray's translucent crossings no longer matter).
+    auto probeOpen = [&](RTCScene scene, size_t first, size_t last) {
         uint8_t probed[kBatchChunk];
         size_t numProbes = 0;
-        for (size_t k = 0; k < numSegments; ++k)
+        for (size_t k = first; k < last; ++k)
             if (occlusionBuffer[k].tfar >= 0) {
                 probed[numProbes] = uint8_t(k);
                 probe[numProbes++] = occlusionBuffer[k];
             }
-        if (numProbes > 0)
-            rtcOccluded1M(embree_->skyScene, &plain, probe, static_cast<unsigned>(numProbes), sizeof(RTCRay));
+        if (numProbes > 0) rtcOccluded1M(scene, &plain, probe, static_cast<unsigned>(numProbes), sizeof(RTCRay));
         for (size_t j = 0; j < numProbes; ++j)
             if (probe[j].tfar < 0) occlusionBuffer[probed[j]].tfar = probe[j].tfar;
-    }
+    };
+    // Sky surfaces block point-light segments like walls; the pieces that only sun rays meet.
+    if (!skyRecords_.empty() && skySegmentBit_ == 0 && numSegments > 0) probeOpen(embree_->skyScene, 0, numSegments);
+    if (embree_->sunOnlyScene && numOcclusion > numSegments)
+        probeOpen(embree_->sunOnlyScene, numSegments, numOcclusion);
     // Segments that Embree leaves open still stop at structural solid (sun rays up to their sky,
     // whose distance their tfar now holds): the tree walk only for the rays that need it, and none
     // when the hull of their ends is clear (sun and point-light segments apart: one long sun prism

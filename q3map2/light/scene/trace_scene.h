@@ -89,8 +89,10 @@ struct ShadowRay {
 
 class TraceScene {
 public:
-    // Throws CompileError when Embree cannot be initialised.
-    TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options);
+    // Throws CompileError when Embree cannot be initialised. `sunOnly`: opaque casters that stop sun
+    // rays alone (traceCasterPieces' forSunOnly), each in its surface's shadow group.
+    TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSceneOptions& options,
+               const std::vector<SceneSurface>& sunOnly = {});
     ~TraceScene();
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
@@ -181,6 +183,7 @@ private:
     static constexpr size_t kBatchChunk = 64;
     Vec3 traceOne(const ShadowRay& ray) const;     // counted
     Vec3 traceSingle(const ShadowRay& ray) const;  // traceOne's work, not counted
+    bool blockedForSunOnly(const ShadowRay& ray, float tfar) const;
     void traceChunk(std::span<const ShadowRay> rays, std::span<Vec3> out, bool coherent, bool axialRaysAlone) const;
     void countRays(size_t n) const;
     // A ray's mask in the casters' scene: segment rays of a receiver that the sky's group shadows
