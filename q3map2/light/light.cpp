@@ -114,10 +114,19 @@ int runLightStage(const LightOptions& options, const CommonOptions& common, Log&
     phase("scene");
     buildSurfaceGeometry(ctx);
     smoothNormals(ctx, log);
-    buildScene(ctx);
+    buildBspQueries(ctx);
+    // The lights come before the casters' scene, which needs the pieces only sun rays meet when
+    // some light is a sun; their messages keep their place after the scene's.
+    Log lightsLog;
+    lightsLog.setVerbose(log.verbose());
+    lightsLog.holdMessages();
+    createLights(ctx, lightsLog);
+    const bool sunRays = std::any_of(ctx.lights.begin(), ctx.lights.end(),
+                                     [](const Light& l) { return l.type == LightType::Sun; });
+    buildScene(ctx, sunRays);
     log.info(strCat(ctx.scene->casterCount(), " shadow-casting surfaces"));
     phase("lights");
-    createLights(ctx, log);
+    lightsLog.replayInto(log);
     ctx.luxelPasses = prepareLuxelPasses(ctx, log);
     // The grid's points are placed while the lightmaps are lit: the placement's serial search for
     // free nudges then leaves no core idle.

@@ -110,8 +110,12 @@ void buildSurfaceGeometry(LightContext& ctx);
 // -shade / -shadeangle: the phong-smoothed normal of every draw vertex into shadedNormals (left
 // empty when phong shading is off or changes nothing); logs how many vertices were smoothed.
 void smoothNormals(LightContext& ctx, Log& log);
-// Sky indices, the Embree scene and the BSP tree (clusters, PVS, solidity).
-void buildScene(LightContext& ctx);
+// Sky indices, the BSP tree (clusters, PVS, solidity) and the sky visibility.
+void buildBspQueries(LightContext& ctx);
+// The casters' Embree scene (after buildBspQueries, which it runs when that has not run).
+// `sunRays` false: no sun ray will be traced (the lights have none), and the pieces that only sun
+// rays meet are left out.
+void buildScene(LightContext& ctx, bool sunRays = true);
 // The light list: entity lights of the BSP and the .map, shader suns, skies and surface lights.
 void createLights(LightContext& ctx, Log& log);
 // PVS cluster of every non-sun light; lights stuck in solid are removed (their count is returned).

@@ -119,6 +119,14 @@ TEST(TracePieces, OpaquePiecesInSolidAreLeftOutOrKeptForSunRays) {
     EXPECT_FALSE(split.forSunOnly[0].triangles.empty());
     EXPECT_FALSE(split.surfaces[1].triangles.empty());
     EXPECT_TRUE(split.forSunOnly[1].triangles.empty());
+    // Without sun rays they are left out as well.
+    TraceSceneOptions noSun;
+    noSun.sunRays = false;
+    const CasterPieces withoutSun =
+        traceCasterPieces({wallStrip(-900, 4), quad({-4000, -4000, 2000}, {8000, 0, 0}, {0, 8000, 0}, &sky, 0)}, tree,
+                          noSun);
+    EXPECT_TRUE(withoutSun.surfaces[0].triangles.empty());
+    EXPECT_TRUE(withoutSun.forSunOnly.empty());
     // Through the strip at x = -400 towards the sky: only sun rays meet it, one at a time or in a batch.
     const TraceScene withSunOnly(split.surfaces, {}, split.forSunOnly);
     const TraceScene without(split.surfaces, {});

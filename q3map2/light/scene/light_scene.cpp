@@ -164,7 +164,7 @@ void buildSurfaceGeometry(LightContext& ctx) {
     }
 }
 
-void buildScene(LightContext& ctx) {
+void buildBspQueries(LightContext& ctx) {
     Log quiet(false);
     ctx.skyIndices = assignSkyIndices(ctx.bsp, ctx.shaders.shaders, ctx.world.noShaderSun, ctx.options.oneSky, quiet);
     for (SceneSurface& s : ctx.surfaces) {
@@ -182,8 +182,13 @@ void buildScene(LightContext& ctx) {
     for (const SceneSurface& s : ctx.surfaces)
         if (s.shader && s.shader->sky) surfaceSkyIndex[static_cast<size_t>(s.surfaceNum)] = s.skyIndex;
     ctx.skyVisibility = SkyVisibility(ctx.bsp, *ctx.tree, surfaceSkyIndex);
+}
+
+void buildScene(LightContext& ctx, bool sunRays) {
+    if (!ctx.tree) buildBspQueries(ctx);
     TraceSceneOptions options;
     options.patchShadows = ctx.options.patchShadows;
+    options.sunRays = sunRays;
     const BspTree* tree = ctx.tree.get();
     options.solidBetween = [tree](Vec3 from, Vec3 to) { return tree->segmentCrossesSolid(from, to); };
     options.hullClearOfSolid = [tree](std::span<const Vec3> points) { return tree->hullWalkOfSolid(points); };

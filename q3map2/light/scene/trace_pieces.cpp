@@ -369,7 +369,7 @@ CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const 
         subdivideLeaf(std::move(leaves[l].windings), leaves[l].depth, [&](Winding&& w) {
             if (!outside || !opaqueCaster(surfaces[w.surface]))
                 emitted[l].add(w);
-            else if (split)
+            else if (split && options.sunRays)
                 emittedForSun[l].add(w);
         });
     };

@@ -35,9 +35,10 @@ struct CasterPieces {
 // inside the triangle; only theirs keep texture coordinates). Surfaces that cast nothing are
 // returned unchanged. Opaque pieces in leaves outside every cluster, which only rays through such
 // a leaf could meet and which the solid tests stop there, are left out, or kept apart for sun rays
-// where the tracer split the leaf. Without BSP nodes the triangles are only grown. `contents`,
-// when given, receives what each BSP leaf holds. Surfaces are filtered and leaves subdivided on
-// `threads` threads (0: one per core); the result does not depend on their number.
+// where the tracer split the leaf (unless options.sunRays is false). Without BSP nodes the
+// triangles are only grown. `contents`, when given, receives what each BSP leaf holds. Surfaces
+// are filtered and leaves subdivided on `threads` threads (0: one per core); the result does not
+// depend on their number.
 CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const bsp::Bsp& bsp,
                                const TraceSceneOptions& options, TraceLeafContents* contents = nullptr,
                                int threads = 0);

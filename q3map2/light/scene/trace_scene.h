@@ -47,6 +47,9 @@ struct SceneSurface {
 
 struct TraceSceneOptions {
     bool patchShadows = false;  // -patchshadows: tessellated patches cast shadows
+    // False when no sun ray will be traced: the casters' pieces that only sun rays meet are then
+    // left out (traceCasterPieces).
+    bool sunRays = true;
     // Whether the segment from -> to enters structural solid (the BSP's solid leaves). Any ray that
     // does is blocked (a sun ray up to its sky), as q3map2's TraceLine stops at the first solid leaf
     // whatever the inhibit radius: a ray grazing up a wall that a vertex lies on stays in the dark,
