@@ -54,6 +54,9 @@ struct Page {
     std::vector<uint64_t> usedBits;  // pageSize rows of wordsPerRow words
     int wordsPerRow = 0;
     int freeTexels = 0;
+    // Per row, the longest run of free texels: a block row whose longest run is longer cannot go
+    // there, which rules out most of a full page's rows before their columns are compared.
+    std::vector<int> longestFree;
     // Sizes of whole rectangles that found no place here when every position was tried. A page
     // only fills up, so no rectangle at least as wide and as tall fits it later either.
     std::vector<std::pair<int, int>> rectanglesRefused;
@@ -183,6 +186,32 @@ void blockedColumns(std::span<const TexelRun> runs, int y, int xMax, SmearedRows
     }
 }
 
+// Whether a block whose rows need free runs of `longestRun` (per block row) may lie with its top at
+// page row y: every page row must have a free run at least as long (needed, not enough).
+bool rowsMayHold(const Page& page, std::span<const int> longestRun, int y) {
+    for (size_t r = 0; r < longestRun.size(); ++r)
+        if (longestRun[r] > page.longestFree[size_t(y) + r]) return false;
+    return true;
+}
+
+std::vector<int> longestRunPerRow(std::span<const TexelRun> runs, int height) {
+    std::vector<int> longest(size_t(height), 0);
+    for (const TexelRun& run : runs) longest[size_t(run.row)] = std::max(longest[size_t(run.row)], run.length);
+    return longest;
+}
+
+void updateLongestFree(Page& page, int pageSize, int firstRow, int rows) {
+    for (int py = firstRow; py < firstRow + rows; ++py) {
+        const uint8_t* used = &page.used[size_t(py) * pageSize];
+        int longest = 0, run = 0;
+        for (int px = 0; px < pageSize; ++px) {
+            run = used[px] ? 0 : run + 1;
+            longest = std::max(longest, run);
+        }
+        page.longestFree[size_t(py)] = longest;
+    }
+}
+
 void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, Rgb8 solidTexel, int x, int y) {
     auto put = [&](int px, int py, const Rgb8& c) {
         const size_t o = size_t(py) * pageSize + px;
@@ -193,6 +222,7 @@ void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, Rgb8 so
     };
     if (solid) {
         put(x, y, solidTexel);
+        updateLongestFree(page, pageSize, y, 1);
         return;
     }
     for (int sy = 0; sy < b.height; ++sy)
@@ -200,6 +230,7 @@ void stamp(Page& page, int pageSize, const LightmapBlock& b, bool solid, Rgb8 so
             const size_t i = size_t(sy) * b.width + sx;
             if (texelUsed(b, i)) put(x + sx, y + sy, b.texels[i]);
         }
+    updateLongestFree(page, pageSize, y, b.height);
 }
 
 }  // namespace
@@ -487,6 +518,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
         const int needed = usedTexels(b);
         const std::vector<TexelRun> runs = isSolid ? std::vector<TexelRun>{} : texelRuns(collapsed.merged(index));
         const bool rectangle = !isSolid && runsFillRectangle(runs, b.width, b.height);
+        const std::vector<int> longestRun = longestRunPerRow(runs, b.height);
         int pageIndex = -1, px = 0, py = 0;
         for (size_t p = 0; p < pages.size() && pageIndex < 0; ++p) {
             Page& page = pages[p];
@@ -508,6 +540,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
                         }
                     continue;
                 }
+                if (!rowsMayHold(page, longestRun, y)) continue;
                 blockedColumns(runs, y, xMax, smeared, blocked);
                 if (xStep == 1) {
                     const int x = firstClearBit(blocked, xMax);
@@ -530,6 +563,7 @@ PackedLightmaps packLightmaps(std::span<const LightmapBlock> blocks, const PackO
             fresh.wordsPerRow = (pageSize + 63) / 64;
             fresh.usedBits.assign(size_t(pageSize) * size_t(fresh.wordsPerRow), 0);
             fresh.freeTexels = pageTexels;
+            fresh.longestFree.assign(size_t(pageSize), pageSize);
             pages.push_back(std::move(fresh));
             pageIndex = int(pages.size()) - 1;
             px = py = 0;
