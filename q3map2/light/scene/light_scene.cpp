@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <future>
 
 #include "entity_keys.h"
 #include "light_context.h"
@@ -198,6 +199,12 @@ void buildScene(LightContext& ctx, bool sunRays) {
     // The casters as q3map2's tracer cuts and tests them: a ray passing within 1 % of a piece
     // beside it is stopped (trace_pieces.h). Sun rays meet solid where its walk does.
     TraceLeafContents contents;
+    // The solid shell needs only the tree: made on a thread of its own while the pieces are cut
+    // (its serial walk would otherwise leave a core idle).
+    std::future<SolidShell> shell =
+        std::async(ctx.threads == 1 ? std::launch::deferred : std::launch::async, [&ctx, tree] {
+            return solidShellOf(ctx.bsp.models.empty() ? nullptr : &ctx.bsp.models[0], *tree);
+        });
     CasterPieces pieces = traceCasterPieces(ctx.surfaces, ctx.bsp, options, &contents, ctx.threads);
     auto skySolid = std::make_shared<const SkyRaySolid>(ctx.bsp, contents);
     options.skySolidBetween = [skySolid](Vec3 from, Vec3 to) { return skySolid->stops(from, to); };
@@ -205,7 +212,7 @@ void buildScene(LightContext& ctx, bool sunRays) {
     options.skySolidBetweenInHull = [skySolid](const HullVerdict& hull, Vec3 from, Vec3 to) {
         return skySolid->stopsFrom(hull, from, to);
     };
-    options.solidShell = solidShellOf(ctx.bsp.models.empty() ? nullptr : &ctx.bsp.models[0], *tree);
+    options.solidShell = shell.get();
     ctx.scene = std::make_unique<TraceScene>(pieces.surfaces, options, pieces.forSunOnly);
 }
 

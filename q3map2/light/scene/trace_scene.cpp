@@ -2,6 +2,8 @@
 #include "trace_scene.h"
 
 #include <embree3/rtcore.h>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
@@ -257,30 +259,44 @@ TraceScene::TraceScene(const std::vector<SceneSurface>& surfaces, const TraceSce
         skySegmentBit_ = 1u << groupOfBit_.size();
         skySegmentGroup_ = *skyGroup;
     }
-    for (const SceneSurface& s : surfaces) {
-        if (!castsShadow(s, options)) continue;
-        RTCGeometry geom = newTriangles(s, groupBit(s.castShadows));
-        const size_t numVerts = s.xyz.size();
-        const size_t numTris = s.triangles.size() / 3;
+    // Each caster's geometry made on the threads (copying the buffers is most of the set-up),
+    // then attached in surface order, which the geometry ids follow.
+    struct Made {
+        RTCGeometry geom = nullptr;
         Record rec;
-        rec.shader = s.shader;
-        rec.sky = s.shader && s.shader->sky;
-        rec.filters = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !rec.sky;
-        rec.skyIndex = s.skyIndex;
-        if (rec.filters) {
-            rec.st = s.st;
-            const auto* ib = static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
-            rec.triangles.assign(ib, ib + numTris * 3);
-            if (rec.st.size() < numVerts * 2) rec.st.clear();
-            // Shadow rays are occlusion queries: only the occlusion filter is ever called.
-            rtcSetGeometryOccludedFilterFunction(geom, collectTranslucentHits);
+    };
+    std::vector<Made> made(surfaces.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const SceneSurface& s = surfaces[i];
+            if (!castsShadow(s, options)) continue;
+            RTCGeometry geom = newTriangles(s, groupBit(s.castShadows));
+            const size_t numVerts = s.xyz.size();
+            const size_t numTris = s.triangles.size() / 3;
+            Record& rec = made[i].rec;
+            rec.shader = s.shader;
+            rec.sky = s.shader && s.shader->sky;
+            rec.filters = s.shader && (s.shader->alphaShadow || s.shader->lightFilter) && !rec.sky;
+            rec.skyIndex = s.skyIndex;
+            if (rec.filters) {
+                rec.st = s.st;
+                const auto* ib = static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
+                rec.triangles.assign(ib, ib + numTris * 3);
+                if (rec.st.size() < numVerts * 2) rec.st.clear();
+                // Shadow rays are occlusion queries: only the occlusion filter is ever called.
+                rtcSetGeometryOccludedFilterFunction(geom, collectTranslucentHits);
+            }
+            rtcCommitGeometry(geom);
+            made[i].geom = geom;
         }
-        rtcCommitGeometry(geom);
-        std::vector<Record>& records = rec.sky ? skyRecords_ : records_;
-        const unsigned id = rtcAttachGeometry(rec.sky ? embree_->skyScene : embree_->scene, geom);
-        rtcReleaseGeometry(geom);
+    });
+    for (Made& m : made) {
+        if (!m.geom) continue;
+        std::vector<Record>& records = m.rec.sky ? skyRecords_ : records_;
+        const unsigned id = rtcAttachGeometry(m.rec.sky ? embree_->skyScene : embree_->scene, m.geom);
+        rtcReleaseGeometry(m.geom);
         if (id != records.size()) throw CompileError("embree: unexpected geometry numbering");
-        records.push_back(std::move(rec));
+        records.push_back(std::move(m.rec));
     }
     casters_ = records_.size() + skyRecords_.size();
     if (skySegmentBit_ != 0)
