@@ -292,6 +292,17 @@ void appendPieces(CornerSpan w, bool exact, SceneSurface& out) {
     }
 }
 
+// A surface's identity and shadow settings without its geometry, which its pieces then fill.
+SceneSurface withoutGeometry(const SceneSurface& s) {
+    SceneSurface out;
+    out.surfaceNum = s.surfaceNum;
+    out.shader = s.shader;
+    out.castShadows = s.castShadows;
+    out.skyIndex = s.skyIndex;
+    out.isPatch = s.isPatch;
+    return out;
+}
+
 // A caster that stops every ray meeting it: not sky (sun rays end there), not a filter.
 bool opaqueCaster(const SceneSurface& s) {
     return !s.shader || (!s.shader->sky && !s.shader->alphaShadow && !s.shader->lightFilter);
@@ -321,12 +332,7 @@ CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const 
             out[i] = s;
             return;
         }
-        SceneSurface& piece = out[i];
-        piece.surfaceNum = s.surfaceNum;
-        piece.shader = s.shader;
-        piece.castShadows = s.castShadows;
-        piece.skyIndex = s.skyIndex;
-        piece.isPatch = s.isPatch;
+        out[i] = withoutGeometry(s);
         for (size_t t = 0; t + 2 < s.triangles.size(); t += 3) {
             Winding w;
             w.surface = i;
@@ -415,13 +421,8 @@ CasterPieces traceCasterPieces(const std::vector<SceneSurface>& surfaces, const 
     auto fan = [&](size_t i) {
         fanInto(surfaces[i], bySurface[i], out[i]);
         if (forSunBySurface[i].empty()) return;
-        SceneSurface& sun = result.forSunOnly[i];
-        sun.surfaceNum = out[i].surfaceNum;
-        sun.shader = out[i].shader;
-        sun.castShadows = out[i].castShadows;
-        sun.skyIndex = out[i].skyIndex;
-        sun.isPatch = out[i].isPatch;
-        fanInto(surfaces[i], forSunBySurface[i], sun);
+        result.forSunOnly[i] = withoutGeometry(surfaces[i]);
+        fanInto(surfaces[i], forSunBySurface[i], result.forSunOnly[i]);
     };
     tbb::task_arena(threads > 0 ? threads : tbb::task_arena::automatic).execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
