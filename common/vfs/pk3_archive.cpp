@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <mutex>
 
 #include <unzip.h>
 
@@ -70,6 +71,25 @@ ZipHandle openZip(const MappedFile& file, const std::filesystem::path& path) {
 
 }  // namespace
 
+// Zip handles not in use by a read. A handle is returned only after a read that closed its entry
+// cleanly; one that failed is closed instead.
+struct Pk3Archive::HandlePool {
+    std::mutex mutex;
+    std::vector<ZipHandle> idle;
+
+    ZipHandle take() {
+        std::lock_guard lock(mutex);
+        if (idle.empty()) return nullptr;
+        ZipHandle handle = std::move(idle.back());
+        idle.pop_back();
+        return handle;
+    }
+    void give(ZipHandle handle) {
+        std::lock_guard lock(mutex);
+        idle.push_back(std::move(handle));
+    }
+};
+
 std::optional<Pk3Archive> Pk3Archive::open(const std::filesystem::path& path, std::string& error) {
     std::shared_ptr<const MappedFile> file;
     try {
@@ -109,6 +129,8 @@ std::optional<Pk3Archive> Pk3Archive::open(const std::filesystem::path& path, st
         error = "damaged central directory";
         return std::nullopt;
     }
+    archive.handles_ = std::make_shared<HandlePool>();
+    archive.handles_->give(std::move(zip));
     return archive;
 }
 
@@ -121,7 +143,8 @@ std::vector<uint8_t> Pk3Archive::read(const Entry& entry) const {
     auto fail = [&](const std::string& what) -> FileError {
         return FileError(path_.string() + ": cannot read " + entry.name + ": " + what);
     };
-    ZipHandle zip = openZip(*file_, path_);
+    ZipHandle zip = handles_->take();
+    if (!zip) zip = openZip(*file_, path_);
     if (!zip) throw fail("archive can no longer be opened");
     unz64_file_pos position{entry.directoryOffset, entry.fileNumber};
     if (unzGoToFilePos64(zip.get(), &position) != UNZ_OK) throw fail("entry not found");
@@ -145,6 +168,7 @@ std::vector<uint8_t> Pk3Archive::read(const Entry& entry) const {
         throw fail("size " + std::to_string(bytes.size()) + " does not match the declared " + std::to_string(entry.size));
     if (closeStatus == UNZ_CRCERROR) throw fail("CRC mismatch");
     if (closeStatus != UNZ_OK) throw fail("compressed data is damaged or truncated");
+    handles_->give(std::move(zip));
     return bytes;
 }
 

@@ -1,6 +1,7 @@
 // One .pk3 (zip) archive: its table of contents, read once, and entry extraction. The archive is
-// memory-mapped and minizip reads it through that map; each read opens its own zip handle on the
-// map, so a Pk3Archive is immutable after construction and safe to share between threads.
+// memory-mapped and minizip reads it through that map. A read borrows a zip handle from the
+// archive's pool (opening one only when every pooled handle is in use: an open scans up to 64 KiB
+// backwards for the end records), so a Pk3Archive is safe to share between threads.
 #pragma once
 
 #include <cstdint>
@@ -36,9 +37,11 @@ public:
     std::vector<uint8_t> read(const Entry& entry) const;
 
 private:
+    struct HandlePool;
     std::filesystem::path path_;
     std::shared_ptr<const MappedFile> file_;
     std::unordered_map<std::string, Entry> entries_;
+    std::shared_ptr<HandlePool> handles_;
 };
 
 }  // namespace q3
