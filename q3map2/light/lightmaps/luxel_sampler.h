@@ -55,6 +55,7 @@ struct LuxelTiles {
             for (int tx = 0; tx < w; tx += edge) {
                 Bounds b;
                 std::vector<uint32_t> members;
+                members.reserve(size_t(edge) * size_t(edge));
                 for (int y = ty; y < std::min(h, ty + edge); ++y)
                     for (int x = tx; x < std::min(w, tx + edge); ++x) {
                         const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
@@ -174,8 +175,9 @@ struct LuxelSampler {
 
     // lightAt for the sample points of the tiles `active` (`skip`, when given: skip[i] = leave
     // dark), written to out[i] (and the direction towards the light to dirs[i] when `dirs` is set);
-    // the shadow rays of the light are traced together as one batch. Entries outside those tiles
-    // are not touched.
+    // the shadow rays of the light are traced together as one batch. `out` must be zero on the
+    // tiles' luxels (the caller clears what each light wrote before the next); only lit luxels are
+    // written, and entries outside those tiles are not touched.
     void lightAll(const Light& light, float envelope, const std::vector<std::optional<SamplePoint>>& points,
                   const LuxelTiles& tiles, std::span<const uint32_t> active, const std::vector<uint8_t>* skip,
                   std::vector<Vec3>& out, std::vector<Vec3>* dirs, Scratch& scratch) const {
@@ -190,7 +192,6 @@ struct LuxelSampler {
             lit.clear();
             for (const uint32_t t : active) {
                 const std::vector<uint32_t>& members = tiles.luxels[t];  // the luxels with a sample point
-                for (const uint32_t i : members) out[i] = Vec3{};
                 if (!skip) {
                     lit.insert(lit.end(), members.begin(), members.end());
                     continue;
@@ -201,7 +202,6 @@ struct LuxelSampler {
             lightToSamples(light, deferred, envelope, points, lit, out, dirs ? dirs->data() : nullptr, rayLuxel);
         } else {
             tiles.forEachLuxel(active, [&](uint32_t i) {
-                out[i] = Vec3{};
                 if (!points[i] || (skip && (*skip)[i])) return;
                 const size_t before = rays.size();
                 std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);

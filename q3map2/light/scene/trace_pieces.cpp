@@ -230,6 +230,8 @@ void subdivideLeaf(std::vector<Winding> windings, int depth, Emit&& emit) {
     Vec3 normal;
     normal[split.axis] = 1.0f;
     std::vector<Winding> fronts, backs;
+    fronts.reserve(windings.size());  // a winding's parts grow each half by one at most
+    backs.reserve(windings.size());
     Winding front, back;
     for (Winding& w : windings) {
         const int side = clipWinding(w, normal, split.dist, front, back);
