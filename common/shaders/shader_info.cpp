@@ -60,14 +60,23 @@ ShaderTable& ShaderTable::operator=(ShaderTable&& other) noexcept {
 
 bool ShaderTable::add(ShaderInfo shader) {
     std::string key = shaderKey(shader.name);
-    if (byName_.count(key)) {
+    return add(std::make_unique<ShaderInfo>(std::move(shader)), std::move(key));
+}
+
+bool ShaderTable::add(std::unique_ptr<ShaderInfo> shader, std::string key) {
+    const auto [it, added] = byName_.try_emplace(std::move(key), shader.get());
+    if (!added) {
         ++duplicates_;
         return false;
     }
-    shader.explicitScript = true;
-    shaders_.push_back(std::make_unique<ShaderInfo>(std::move(shader)));
-    byName_.emplace(std::move(key), shaders_.back().get());
+    shader->explicitScript = true;
+    shaders_.push_back(std::move(shader));
     return true;
+}
+
+void ShaderTable::reserve(size_t shaders) {
+    shaders_.reserve(shaders);
+    byName_.reserve(shaders);
 }
 
 const ShaderInfo* ShaderTable::findExplicit(std::string_view name) const {

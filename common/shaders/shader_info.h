@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "vec3.h"
@@ -295,6 +296,9 @@ public:
     // Adds a script shader. Returns false, keeping the earlier one, when the name is already defined
     // (the first definition wins).
     bool add(ShaderInfo shader);
+    // The same for a shader already on the heap whose shaderKey is known (made beside others).
+    bool add(std::unique_ptr<ShaderInfo> shader, std::string key);
+    void reserve(size_t shaders);
 
     // The script shader of that name (case-insensitive, extension ignored) or nullptr.
     const ShaderInfo* findExplicit(std::string_view name) const;
@@ -324,7 +328,7 @@ public:
 
 private:
     std::vector<std::unique_ptr<ShaderInfo>> shaders_;
-    std::map<std::string, const ShaderInfo*, std::less<>> byName_;
+    std::unordered_map<std::string, const ShaderInfo*> byName_;  // by shaderKey
     int duplicates_ = 0;
     std::vector<SourceFile> files_;
     bool hasShaderList_ = false;

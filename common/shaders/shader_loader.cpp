@@ -91,9 +91,19 @@ ShaderTable buildShaderTable(const std::vector<ShaderScriptSource>& scripts, con
     // once the table holds every earlier one.
     struct Parsed {
         bool inTurn = false;
-        std::vector<ShaderInfo> shaders;
+        std::vector<std::unique_ptr<ShaderInfo>> shaders;  // on the heap and keyed beside the others
+        std::vector<std::string> keys;                     // shaderKey of each
         Log messages{false};
         std::exception_ptr error;
+    };
+    auto own = [](Parsed& p, std::vector<ShaderInfo> shaders, const std::string& path) {
+        p.shaders.reserve(shaders.size());
+        p.keys.reserve(shaders.size());
+        for (ShaderInfo& shader : shaders) {
+            shader.sourceFile = path;
+            p.keys.push_back(shaderKey(shader.name));
+            p.shaders.push_back(std::make_unique<ShaderInfo>(std::move(shader)));
+        }
     };
     std::vector<Parsed> parsed(scripts.size());
     tbb::parallel_for(size_t(0), scripts.size(), [&](size_t i) {
@@ -103,31 +113,33 @@ ShaderTable buildShaderTable(const std::vector<ShaderScriptSource>& scripts, con
         p.messages.setVerbose(log.verbose());
         p.messages.holdMessages();
         try {
-            p.shaders = parseShaderScript(scripts[i].text, scripts[i].displayName, p.messages, nullptr);
+            own(p, parseShaderScript(scripts[i].text, scripts[i].displayName, p.messages, nullptr), scripts[i].path);
         } catch (...) {
             p.error = std::current_exception();
         }
     });
+    size_t total = 0;
+    for (const Parsed& p : parsed) total += p.shaders.size();
+    table.reserve(total);
     for (size_t i = 0; i < scripts.size(); ++i) {
         const ShaderScriptSource& script = scripts[i];
-        std::vector<ShaderInfo> shaders;
-        if (parsed[i].inTurn) {
-            shaders = parseShaderScript(script.text, script.displayName, log, &table);
+        Parsed& p = parsed[i];
+        if (p.inTurn) {
+            own(p, parseShaderScript(script.text, script.displayName, log, &table), script.path);
         } else {
-            parsed[i].messages.replayInto(log);
-            if (parsed[i].error) std::rethrow_exception(parsed[i].error);
-            shaders = std::move(parsed[i].shaders);
+            p.messages.replayInto(log);
+            if (p.error) std::rethrow_exception(p.error);
         }
         ShaderTable::SourceFile file;
         file.path = script.path;
         file.inShaderList = listedSet.contains(script.path);
-        file.shaderCount = static_cast<int>(shaders.size());
+        file.shaderCount = static_cast<int>(p.shaders.size());
         table.addFile(std::move(file));
-        for (ShaderInfo& shader : shaders) {
-            shader.sourceFile = script.path;
-            std::string name = shader.name;
-            int line = shader.sourceLine;
-            if (!table.add(std::move(shader)))
+        for (size_t k = 0; k < p.shaders.size(); ++k) {
+            // A duplicate is freed by add: what its message names is kept first (only with -v).
+            const std::string name = log.verbose() ? p.shaders[k]->name : std::string();
+            const int line = p.shaders[k]->sourceLine;
+            if (!table.add(std::move(p.shaders[k]), std::move(p.keys[k])))
                 log.debug(script.displayName + ":" + std::to_string(line) + ": shader '" + name +
                           "' already defined, first definition kept");
         }

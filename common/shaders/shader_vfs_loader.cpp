@@ -28,18 +28,19 @@ ShaderTable loadShaderTable(const Vfs& vfs, Log& log) {
 
     std::vector<std::string> order = shaderScriptLoadOrder(vfs.list(scriptDir, "shader"), listed, log);
     // Read (and inflated) in parallel, kept in load order.
-    std::vector<std::optional<std::vector<uint8_t>>> read(order.size());
-    tbb::parallel_for(size_t(0), order.size(), [&](size_t i) { read[i] = vfs.read(order[i]); });
-    std::vector<ShaderScriptSource> scripts;
-    scripts.reserve(order.size());
-    for (size_t i = 0; i < order.size(); ++i) {
-        if (!read[i]) continue;
-        ShaderScriptSource source;
+    std::vector<std::optional<ShaderScriptSource>> read(order.size());
+    tbb::parallel_for(size_t(0), order.size(), [&](size_t i) {
+        std::optional<std::vector<uint8_t>> bytes = vfs.read(order[i]);
+        if (!bytes) return;
+        ShaderScriptSource& source = read[i].emplace();
         source.path = order[i];
         source.displayName = vfs.sourceOf(order[i]).value_or(order[i]);
-        source.text = bytesToText(*read[i]);
-        scripts.push_back(std::move(source));
-    }
+        source.text = bytesToText(*bytes);
+    });
+    std::vector<ShaderScriptSource> scripts;
+    scripts.reserve(order.size());
+    for (std::optional<ShaderScriptSource>& source : read)
+        if (source) scripts.push_back(std::move(*source));
     ShaderTable table = buildShaderTable(scripts, listed, !lists.empty(), log);
     if (table.hasShaderList()) {
         size_t named = std::count_if(table.files().begin(), table.files().end(),
