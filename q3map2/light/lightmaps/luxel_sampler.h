@@ -203,13 +203,9 @@ struct LuxelSampler {
         } else {
             tiles.forEachLuxel(active, [&](uint32_t i) {
                 if (!points[i] || (skip && (*skip)[i])) return;
-                const size_t before = rays.size();
-                std::optional<LightContribution> c = lightToSample(light, *points[i], deferred, envelope);
-                const bool traced = rays.size() > before;
-                if (!c) {
-                    rays.resize(before);
-                    return;
-                }
+                bool traced = false;
+                std::optional<LightContribution> c = deferredLight(light, *points[i], deferred, envelope, traced);
+                if (!c) return;
                 out[i] = c->color;
                 if (dirs) (*dirs)[i] = c->direction;
                 if (traced) rayLuxel.push_back(i);
@@ -219,6 +215,21 @@ struct LuxelSampler {
         scratch.transmission.resize(rays.size());
         env.scene->traceBatch(rays, scratch.transmission);
         for (size_t k = 0; k < rays.size(); ++k) out[rayLuxel[k]] *= scratch.transmission[k];
+    }
+
+    // lightToSample with its shadow ray appended to deferred.deferredRays (when it has one: then
+    // `traced`): the contribution before occlusion, or nullopt, and no ray kept, when there is none.
+    static std::optional<LightContribution> deferredLight(const Light& light, const SamplePoint& p,
+                                                          const LightingEnv& deferred, float envelope, bool& traced) {
+        std::vector<ShadowRay>* rays = deferred.deferredRays;
+        const size_t before = rays ? rays->size() : 0;
+        std::optional<LightContribution> c = lightToSample(light, p, deferred, envelope);
+        traced = rays && rays->size() > before;
+        if (!c && traced) {
+            rays->resize(before);
+            traced = false;
+        }
+        return c;
     }
 
     Vec3 lightAt(const Light& light, const SamplePoint& p) const {
@@ -325,13 +336,9 @@ struct LuxelSampler {
             SubsampleQuad& q = quads[j] = subsampleQuad(light, points, w, h, x, y, points[which[j]]->origin, 0.25f);
             for (size_t k = 0; k < 4; ++k) {
                 if (!q.litAt[k]) continue;
-                const size_t before = rays.size();
-                std::optional<LightContribution> c = lightToSample(light, *q.litAt[k], deferred, envelope);
-                const bool traced = rays.size() > before;
-                if (!c) {
-                    rays.resize(before);
-                    continue;
-                }
+                bool traced = false;
+                std::optional<LightContribution> c = deferredLight(light, *q.litAt[k], deferred, envelope, traced);
+                if (!c) continue;
                 q.values[k] = c->color;
                 if (traced) rayValue.push_back(j * 4 + k);
             }

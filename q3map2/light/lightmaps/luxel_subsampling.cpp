@@ -68,48 +68,48 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
         }
         return maxComponent(total) > 4;
     };
-    std::vector<uint32_t> batched;  // luxels whose first quad is lit in advance, ascending
-    std::vector<LuxelSampler::SubsampleQuad> quads;
-    makeRowsThrough(lit.y1 + 1);
-    for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y) {
-        const int last = std::min(w - 2, lit.x1);
-        for (int x = nextMixed(std::max(0, lit.x0 - 1), y, last); x >= 0; x = nextMixed(x + 1, y, last)) {
-            if (!bright(x, y)) continue;
-            for (int t = 0; t < 4; ++t) {
-                const uint32_t i = uint32_t(y + (t >> 1)) * uint32_t(w) + uint32_t(x + (t & 1));
-                if (points[i]) batched.push_back(i);
-            }
+    // Every stamp with a dark and a lit luxel and more than 4 in some channel, row by row, as it
+    // stands when the walk reaches it (`visit` may refine its luxels and grow `lit`).
+    auto forEachStampToRefine = [&](auto&& visit) {
+        for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y) {
+            makeRowsThrough(y + 1);
+            for (int x = nextMixed(std::max(0, lit.x0 - 1), y, std::min(w - 2, lit.x1)); x >= 0;
+                 x = nextMixed(x + 1, y, std::min(w - 2, lit.x1)))
+                if (bright(x, y)) visit(x, y);
         }
-    }
+    };
+    std::vector<uint32_t> batched;  // luxels whose first quad is lit in advance, ascending
+    forEachStampToRefine([&](int x, int y) {
+        for (int t = 0; t < 4; ++t) {
+            const uint32_t i = uint32_t(y + (t >> 1)) * uint32_t(w) + uint32_t(x + (t & 1));
+            if (points[i]) batched.push_back(i);
+        }
+    });
     std::sort(batched.begin(), batched.end());
     batched.erase(std::unique(batched.begin(), batched.end()), batched.end());
     if (batched.size() < minBatched) batched.clear();
+    std::vector<LuxelSampler::SubsampleQuad> quads;
     sampler.firstQuads(light, points, w, h, batched, quads, scratch);
 
-    for (int y = std::max(0, lit.y0 - 1); y + 1 < h && y <= lit.y1; ++y) {
-        makeRowsThrough(y + 1);
-        for (int x = nextMixed(std::max(0, lit.x0 - 1), y, std::min(w - 2, lit.x1)); x >= 0;
-             x = nextMixed(x + 1, y, std::min(w - 2, lit.x1))) {
-            if (!bright(x, y)) continue;
-            for (int t = 0; t < 4; ++t) {
-                const int lx = x + (t & 1), ly = y + (t >> 1);
-                const size_t i = size_t(ly) * size_t(w) + size_t(lx);
-                if (!points[i] || samples[i] >= maxSamples) continue;
-                const auto it = std::lower_bound(batched.begin(), batched.end(), uint32_t(i));
-                if (it != batched.end() && *it == i) {
-                    LuxelSampler::SubsampleQuad q = quads[size_t(it - batched.begin())];
-                    color[i] = sampler.finishSubsample(light, points, w, h, lx, ly, q, 0.25f, samples[i], maxSamples,
-                                                       color[i]);
-                } else {
-                    color[i] = sampler.subsample(light, points, w, h, lx, ly, points[i]->origin, 0.25f, samples[i],
-                                                 maxSamples, color[i]);
-                }
-                state[i] = luxelState(i);
-                ++samples[i];
-                lit.add(lx, ly);
+    forEachStampToRefine([&](int x, int y) {
+        for (int t = 0; t < 4; ++t) {
+            const int lx = x + (t & 1), ly = y + (t >> 1);
+            const size_t i = size_t(ly) * size_t(w) + size_t(lx);
+            if (!points[i] || samples[i] >= maxSamples) continue;
+            const auto it = std::lower_bound(batched.begin(), batched.end(), uint32_t(i));
+            if (it != batched.end() && *it == i) {
+                LuxelSampler::SubsampleQuad q = quads[size_t(it - batched.begin())];
+                color[i] =
+                    sampler.finishSubsample(light, points, w, h, lx, ly, q, 0.25f, samples[i], maxSamples, color[i]);
+            } else {
+                color[i] = sampler.subsample(light, points, w, h, lx, ly, points[i]->origin, 0.25f, samples[i],
+                                             maxSamples, color[i]);
             }
+            state[i] = luxelState(i);
+            ++samples[i];
+            lit.add(lx, ly);
         }
-    }
+    });
     for (int y = lit.y0; y <= lit.y1; ++y)
         std::fill_n(samples.begin() + ptrdiff_t(y) * w + lit.x0, lit.x1 - lit.x0 + 1, 1);
 }
