@@ -21,10 +21,8 @@ bool containsNoCase(const std::vector<std::string>& list, std::string_view item)
 
 // Whether `text` holds `word` in any case.
 bool containsNoCase(std::string_view text, std::string_view word) {
-    // ASCII folding, as std::tolower does in the "C" locale, without a call per character.
-    auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; };
     return std::search(text.begin(), text.end(), word.begin(), word.end(),
-                       [&](char a, char b) { return lower(a) == lower(b); }) != text.end();
+                       [](char a, char b) { return asciiLower(a) == asciiLower(b); }) != text.end();
 }
 
 // Lower-case names already taken: lists may name tens of thousands of files, so membership tests

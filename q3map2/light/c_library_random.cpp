@@ -70,9 +70,19 @@ void CLibraryRandom::discard(uint64_t count) {
         constexpr size_t kLine = 512;
         std::array<uint32_t, kWords + kLine> line;
         for (int j = 0; j < kWords; ++j) line[size_t(j)] = words_[size_t((front_ + j) % kWords)];
+        // The three newest values ride in registers: a vectorized loop would read each value two
+        // steps after storing it, straddling two stores, which the store buffer cannot forward.
+        static_assert(kSeparation == 3);
         for (uint64_t left = count; left > 0;) {
             const size_t n = size_t(std::min<uint64_t>(left, kLine));
-            for (size_t k = 0; k < n; ++k) line[kWords + k] = line[k] + line[kWords - kSeparation + k];
+            uint32_t a = line[kWords - 3], b = line[kWords - 2], c = line[kWords - 1];
+            for (size_t k = 0; k < n; ++k) {
+                const uint32_t value = line[k] + a;
+                line[kWords + k] = value;
+                a = b;
+                b = c;
+                c = value;
+            }
             std::copy(line.begin() + ptrdiff_t(n), line.begin() + ptrdiff_t(n) + kWords, line.begin());
             left -= n;
         }
