@@ -76,7 +76,10 @@ bool sharesAxialNormal(std::span<const MappingSurface> surfaces) {
 class LuxelMapper {
 public:
     LuxelMapper(RawLightmap& lm, bool sharedAxialNormal)
-        : lm_(lm), sharedAxialNormal_(sharedAxialNormal), normalSums_(sharedAxialNormal ? 0 : lm.luxels.size()) {}
+        : lm_(lm),
+          sharedAxialNormal_(sharedAxialNormal),
+          normalSums_(sharedAxialNormal ? 0 : lm.luxels.size()),
+          mapped_(lm.luxels.size(), 0) {}
 
     void mapSurface(const MappingSurface& s) {
         if (s.quadWidth >= 2 && s.quadHeight >= 2 && s.verts.size() == size_t(s.quadWidth) * size_t(s.quadHeight)) {
@@ -93,7 +96,7 @@ public:
 
     void finish() {
         for (size_t i = 0; i < normalSums_.size(); ++i)
-            if (lm_.luxels[i].mapped && dot(normalSums_[i], normalSums_[i]) > 0.0f)
+            if (mapped_[i] && dot(normalSums_[i], normalSums_[i]) > 0.0f)
                 lm_.luxels[i].normal = normalize(normalSums_[i]);
     }
 
@@ -105,9 +108,10 @@ private:
         const int sw = lm_.superWidth(), sh = lm_.superHeight();
         const int x = std::clamp(int(v.st[0]), 0, sw - 1), y = std::clamp(int(v.st[1]), 0, sh - 1);
         const size_t i = size_t(y) * size_t(sw) + size_t(x);
-        Luxel& l = lm_.luxels[i];
         if (!sharedAxialNormal_) normalSums_[i] += v.normal;
-        if (l.mapped) return;
+        if (mapped_[i]) return;
+        mapped_[i] = 1;
+        Luxel& l = lm_.luxels[i];
         Vec3 origin = v.xyz;
         if (lm_.axisNum >= 0) {
             const float S = float(lm_.superSample);
@@ -184,7 +188,7 @@ private:
         if (x1 - x0 > 15 || y1 - y0 > 15) return false;
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x)
-                if (!lm_.luxels[size_t(y) * size_t(sw) + size_t(x)].mapped) return false;
+                if (!mapped_[size_t(y) * size_t(sw) + size_t(x)]) return false;
         return true;
     }
 
@@ -262,6 +266,8 @@ private:
     RawLightmap& lm_;
     bool sharedAxialNormal_;
     std::vector<Vec3> normalSums_;  // empty with a shared axial normal
+    // Luxel::mapped packed one byte a luxel: the splits ask it for every midpoint and whole boxes.
+    std::vector<uint8_t> mapped_;
 };
 
 }  // namespace
