@@ -21,6 +21,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -207,8 +208,19 @@ int main(int argc, char** argv) {
     q3::Log log;
     q3::CommonOptions common;  // filled as far as the command line parsed
     std::shared_ptr<q3::FeedbackStream> feedback;
+#if !defined(__SANITIZE_ADDRESS__)
+    // Sanitizer builds free everything, so that their leak check sees the whole run.
+    common.processEndsAfterStage = true;
+#endif
     try {
-        return run(args, log, common, feedback);
+        const int status = run(args, log, common, feedback);
+        if (!feedback) {
+            // The stage's output is written and renamed; what is left is freeing, which the
+            // process's end does at once. The editor's connection, when there is one, closes in order.
+            std::fflush(nullptr);
+            std::_Exit(status);
+        }
+        return status;
     } catch (const UsageError& e) {
         reportFailure(log, common, feedback, e.what());
         return 2;

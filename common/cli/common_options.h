@@ -23,6 +23,9 @@ struct CommonOptions {
     std::filesystem::path mapPath;         // the .bsp the map argument names (x.map and x give x.bsp)
     std::filesystem::path mapArgument;     // the map argument as given (-bsp reads .reg and .ent files as named)
     std::string commandLine;               // the stage switch and its options, for _q3map2_cmdline
+    // Set by the executable, never by an option: the process ends right after the stage, so a
+    // stage may leave its large state for the end of the process to take back at once.
+    bool processEndsAfterStage = false;
 };
 
 }  // namespace q3

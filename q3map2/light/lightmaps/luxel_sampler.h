@@ -49,11 +49,13 @@ struct LuxelTiles {
     std::vector<Bounds> bounds;
     std::vector<std::vector<uint32_t>> luxels;  // indices of the luxels with a sample point
     std::vector<std::optional<Vec3>> normals;   // the one normal of every sample of the tile, if any
+    std::vector<LuxelRect> rects;               // the smallest rectangle holding the tile's luxels
 
     LuxelTiles(const std::vector<std::optional<SamplePoint>>& points, int w, int h, int edge) {
         for (int ty = 0; ty < h; ty += edge)
             for (int tx = 0; tx < w; tx += edge) {
                 Bounds b;
+                LuxelRect rect;
                 std::vector<uint32_t> members;
                 members.reserve(size_t(edge) * size_t(edge));
                 for (int y = ty; y < std::min(h, ty + edge); ++y)
@@ -61,6 +63,7 @@ struct LuxelTiles {
                         const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
                         if (!points[i]) continue;
                         b.add(points[i]->origin);
+                        rect.add(x, y);
                         members.push_back(static_cast<uint32_t>(i));
                     }
                 if (members.empty()) continue;
@@ -71,6 +74,7 @@ struct LuxelTiles {
                         break;
                     }
                 bounds.push_back(b);
+                rects.push_back(rect);
                 luxels.push_back(std::move(members));
                 normals.push_back(normal);
             }
@@ -91,10 +95,21 @@ struct LuxelTiles {
         for (uint32_t t : tiles)
             for (uint32_t i : luxels[t]) visit(i);
     }
-    // The smallest rectangle holding the luxels of `tiles` (empty: x1 < x0) in a lightmap `width` wide.
-    LuxelRect rectOf(std::span<const uint32_t> tiles, int width) const {
+    // Whether `test` holds for some luxel of `tiles`; stops at the first.
+    template <typename Test>
+    bool anyLuxel(std::span<const uint32_t> tiles, Test&& test) const {
+        for (uint32_t t : tiles)
+            for (uint32_t i : luxels[t])
+                if (test(i)) return true;
+        return false;
+    }
+    // The smallest rectangle holding the luxels of `tiles` (empty: x1 < x0).
+    LuxelRect rectOf(std::span<const uint32_t> tiles) const {
         LuxelRect r;
-        forEachLuxel(tiles, [&](uint32_t i) { r.add(int(i % uint32_t(width)), int(i / uint32_t(width))); });
+        for (uint32_t t : tiles) {
+            r.add(rects[t].x0, rects[t].y0);
+            r.add(rects[t].x1, rects[t].y1);
+        }
         return r;
     }
 };

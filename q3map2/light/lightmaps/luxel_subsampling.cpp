@@ -29,8 +29,10 @@ void refineEdges(const LuxelSampler& sampler, const Light& light, const std::vec
     // flags (bytes are lanes: an or has no carries). A row's flags are made before the windows
     // reach it, from `darkFlags` (the flags of an unlit lightmap) and the lit luxels, which lie
     // in `lit` as it stands then, and follow the luxels the windows refine.
+    // `darkFlags` tells which luxels have a point (reading the points themselves would walk a
+    // far larger array).
     auto luxelState = [&](size_t i) -> uint8_t {
-        if (!points[i]) return kNoPoint;
+        if (darkFlags[i] == kNoPoint) return kNoPoint;
         return color[i].x + color[i].y + color[i].z > 0 ? kLit : kDark;
     };
     std::vector<uint8_t> state(points.size() + kFlagPadding);

@@ -372,12 +372,11 @@ SurfaceLight lightSurface(const LightContext& ctx, const LightingEnv& sharedEnv,
             });
             continue;
         }
-        bool any = false;
-        tiles.forEachLuxel(active, [&](uint32_t i) { any = any || !(single.color[i] == Vec3{}); });
-        if (!any) continue;  // sub-sampling and filtering keep an all-dark light dark
+        // Sub-sampling and filtering keep an all-dark light dark.
+        if (!tiles.anyLuxel(active, [&](uint32_t i) { return !(single.color[i] == Vec3{}); })) continue;
         // The light is zero outside `lit` (and, once added, outside `changed`), which leaves the
         // sums as they are there.
-        LuxelRect lit = tiles.rectOf(active, w);
+        LuxelRect lit = tiles.rectOf(active);
         LuxelRect changed;
         const std::vector<Vec3>* add = &single.color;
         if (radius == 0) {
