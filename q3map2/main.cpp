@@ -1,5 +1,6 @@
 // The q3map2 executable: parses the command line, applies the common options and runs one stage.
 // Exit codes: 0 success, 1 compile failure ("ERROR: <message>"), 2 usage error.
+#include "ascii_case.h"
 #include "bsp_stage.h"
 #include "command_line.h"
 #include "feedback_log.h"
@@ -18,7 +19,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -86,8 +86,7 @@ std::vector<std::string> takePositionalViewerArgs(std::vector<std::string> args,
 // `-help [stage]` comes first on the command line (any case, also --help and -h).
 bool isHelpRequest(const std::vector<std::string>& args) {
     if (args.empty()) return false;
-    std::string first = args.front();
-    std::transform(first.begin(), first.end(), first.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string first = q3::toLower(args.front());
     return first == "-help" || first == "--help" || first == "-h";
 }
 

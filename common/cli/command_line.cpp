@@ -3,20 +3,16 @@
 #include "common_option_table.h"
 
 #include <algorithm>
-#include <cctype>
+#include "ascii_case.h"
 
 namespace q3::cli {
 
 namespace {
 
-std::string lowered(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text;
-}
 
 const StageDescription* findStage(std::span<const StageDescription> stages, const std::string& token) {
     for (const StageDescription& s : stages)
-        if (lowered(s.name) == lowered(token)) return &s;
+        if (toLower(s.name) == toLower(token)) return &s;
     return nullptr;
 }
 
@@ -35,14 +31,14 @@ int anywhereOptionValues(const std::string& token) {
         {"-fs_basepath", 1},  {"-fs_game", 1},     {"-fs_basegame", 1},  {"-fs_homepath", 1},
         {"-fs_home", 1},      {"-fs_homebase", 1}, {"-fs_pakpath", 1},   {"-fs_forbiddenpath", 1},
     };
-    const std::string t = lowered(token);
+    const std::string t = toLower(token);
     for (const auto& [name, values] : kOptions)
         if (t == name) return values;
     return -1;
 }
 
 bool isHelpSwitch(const std::string& token) {
-    std::string t = lowered(token);
+    std::string t = toLower(token);
     return t == "-help" || t == "--help" || t == "-h";
 }
 
@@ -55,7 +51,7 @@ ParseContext stageParseContext(const std::string& stage, const OptionTable<Commo
 
 std::filesystem::path bspPathFor(const std::string& mapArg) {
     std::filesystem::path path(mapArg);
-    std::string extension = lowered(path.extension().string());
+    std::string extension = toLower(path.extension().string());
     if (extension == ".bsp") return path;
     if (extension == ".map" || extension == ".reg" || extension == ".ent")
         return std::filesystem::path(path).replace_extension(".bsp");
@@ -151,7 +147,7 @@ std::string helpText(const CommandLine& line, const OptionTable<CommonOptions>& 
                      std::span<const StageDescription> stages) {
     std::vector<OptionInfo> common = describe(commonTable);
     if (line.helpTopic.empty()) return formatGeneralHelp(common, stages);
-    if (lowered(line.helpTopic) == "game") {
+    if (toLower(line.helpTopic) == "game") {
         std::string text = "Available games:\n";
         for (const std::string& game : supportedGames()) text += "  " + game + "\n";
         return text;

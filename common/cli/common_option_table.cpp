@@ -3,7 +3,7 @@
 #include "option_parser.h"
 
 #include <algorithm>
-#include <cctype>
+#include "ascii_case.h"
 
 namespace q3::cli {
 
@@ -18,8 +18,7 @@ const std::vector<std::string>& q3map2Games() {
 }
 
 void setGame(CommonOptions& o, std::span<const ArgValue> v) {
-    std::string game = v[0].text;
-    std::transform(game.begin(), game.end(), game.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string game = toLower(v[0].text);
     const auto& ok = supportedGames();
     if (std::find(ok.begin(), ok.end(), game) != ok.end()) {
         o.game = game;

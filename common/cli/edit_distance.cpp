@@ -1,13 +1,13 @@
 #include "edit_distance.h"
 
 #include <algorithm>
-#include <cctype>
+#include "ascii_case.h"
 #include <vector>
 
 namespace q3::cli {
 
 size_t editDistance(std::string_view a, std::string_view b) {
-    auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+    auto lower = [](char c) { return asciiLower(c); };
     const size_t n = a.size(), m = b.size();
     // Three rolling rows: the swap case looks two rows back.
     std::vector<size_t> before(m + 1), previous(m + 1), current(m + 1);

@@ -1,9 +1,9 @@
 #include "option_parser.h"
 
+#include "ascii_case.h"
 #include "edit_distance.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -13,12 +13,6 @@
 namespace q3::cli {
 
 namespace {
-
-bool equalsIgnoreCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-           });
-}
 
 std::optional<double> parseInteger(const std::string& text) {
     long long value = 0;
@@ -60,7 +54,7 @@ std::string valueCountText(const OptionInfo& option) {
 int findOption(std::span<const OptionInfo> options, std::string_view name) {
     for (size_t i = 0; i < options.size(); ++i)
         for (const std::string& n : options[i].names)
-            if (equalsIgnoreCase(n, name)) return static_cast<int>(i);
+            if (equalsNoCase(n, name)) return static_cast<int>(i);
     return -1;
 }
 
@@ -126,7 +120,7 @@ std::vector<ParsedOption> parseArguments(std::span<const OptionInfo> options, st
                 if (findOption(context.commonOptions, token) >= 0)
                     throw UsageError("common option " + token + " must come before the stage switch " + context.stage);
                 for (const std::string& s : context.stageSwitches)
-                    if (equalsIgnoreCase(s, token))
+                    if (equalsNoCase(s, token))
                         throw UsageError("only one stage per run: " + token + " given after " + context.stage);
             }
             std::vector<std::string> names = allNames(options);

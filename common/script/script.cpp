@@ -126,19 +126,6 @@ void Script::fail(std::string_view message) const {
     throw ScriptError(name_ + ":" + std::to_string(tokenLine_) + ": " + std::string(message));
 }
 
-bool equalsNoCase(std::string_view a, std::string_view b) {
-    if (a.size() != b.size()) return false;
-    for (size_t i = 0; i < a.size(); ++i)
-        if (asciiLower(a[i]) != asciiLower(b[i])) return false;
-    return true;
-}
-
-std::string toLower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out) c = asciiLower(c);
-    return out;
-}
-
 bool parseNumber(std::string_view s, double& out) {
     if (s.empty()) return false;
     const char* begin = s.data();

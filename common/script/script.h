@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "ascii_case.h"
+
 namespace q3 {
 
 // "<file>:<line>: <what is wrong>"
@@ -57,12 +59,6 @@ private:
     bool quoted_ = false;
 };
 
-// ASCII folding, as std::tolower does in the "C" locale the tools run in, without a library call
-// per character (shader scripts compare every keyword this way).
-constexpr char asciiLower(char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; }
-// Case-insensitive ASCII comparison, as the engines compare keys and shader names.
-bool equalsNoCase(std::string_view a, std::string_view b);
-std::string toLower(std::string_view s);
 // Parses a whole string as a number (no trailing garbage); false when it is not one.
 bool parseNumber(std::string_view s, double& out);
 

@@ -1,8 +1,8 @@
 // Game profiles, base path detection from the map path, and the canonical form of VFS paths.
 #include <algorithm>
 #include <array>
-#include <cctype>
 
+#include "ascii_case.h"
 #include "vfs.h"
 
 namespace q3 {
@@ -14,19 +14,13 @@ constexpr std::array<GameProfile, 2> kProfiles = {{
     {"quakelive", "baseq3"},
 }};
 
-bool equalsIgnoringCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](unsigned char x, unsigned char y) {
-               return std::tolower(x) == std::tolower(y);
-           });
-}
-
 }  // namespace
 
 std::span<const GameProfile> gameProfiles() { return kProfiles; }
 
 const GameProfile* findGameProfile(std::string_view name) {
     for (const GameProfile& profile : kProfiles)
-        if (equalsIgnoringCase(profile.name, name)) return &profile;
+        if (equalsNoCase(profile.name, name)) return &profile;
     return nullptr;
 }
 
@@ -39,7 +33,7 @@ std::optional<DetectedGamePaths> detectGamePaths(const std::filesystem::path& ma
     std::vector<std::filesystem::path> parts(full.begin(), full.end());
     // parts: root, ..., <game>, maps, file. The game folder needs a parent to be the base path.
     for (size_t i = parts.size(); i-- > 2;) {
-        if (i + 1 >= parts.size() || !equalsIgnoringCase(parts[i].string(), "maps")) continue;
+        if (i + 1 >= parts.size() || !equalsNoCase(parts[i].string(), "maps")) continue;
         std::filesystem::path base;
         for (size_t k = 0; k + 1 < i; ++k) base /= parts[k];
         const std::string game = parts[i - 1].string();
@@ -53,7 +47,7 @@ std::string normalizeVfsPath(std::string_view path) {
     std::string out;
     out.reserve(path.size());
     for (char c : path) {
-        char lower = c == '\\' ? '/' : char(std::tolower(static_cast<unsigned char>(c)));
+        char lower = c == '\\' ? '/' : asciiLower(c);
         if (lower == '/' && (out.empty() || out.back() == '/')) continue;  // leading and doubled slashes
         out.push_back(lower);
     }

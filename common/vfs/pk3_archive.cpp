@@ -34,6 +34,11 @@ voidpf ZCALLBACK openCursor(voidpf opaque, const void*, int mode) {
 
 uLong ZCALLBACK readCursor(voidpf, voidpf stream, void* buffer, uLong size) {
     auto* cursor = static_cast<MapCursor*>(stream);
+    // minizip reads the directory's records a byte at a time: those without a library call.
+    if (size == 1 && cursor->position < cursor->bytes.size()) {
+        *static_cast<uint8_t*>(buffer) = cursor->bytes[cursor->position++];
+        return 1;
+    }
     const uint64_t available = cursor->position < cursor->bytes.size() ? cursor->bytes.size() - cursor->position : 0;
     const uLong count = static_cast<uLong>(std::min<uint64_t>(size, available));
     if (count > 0) std::memcpy(buffer, cursor->bytes.data() + cursor->position, count);

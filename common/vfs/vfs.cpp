@@ -4,11 +4,11 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <memory>
 #include <mutex>
 
+#include "ascii_case.h"
 #include "pk3_archive.h"
 
 namespace fs = std::filesystem;
@@ -16,12 +16,6 @@ namespace fs = std::filesystem;
 namespace q3 {
 
 namespace {
-
-std::string lowerCopy(std::string_view text) {
-    std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return out;
-}
 
 // Splits a normalised path into its components; rejects ".." so nothing escapes a game folder.
 std::optional<std::vector<std::string>> splitComponents(const std::string& normalized) {
@@ -67,7 +61,7 @@ struct Vfs::Impl {
         std::error_code ec;
         for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
             std::string name = it->path().filename().string();
-            std::string lower = lowerCopy(name);
+            std::string lower = toLower(name);
             auto [slot, added] = listing->try_emplace(lower, name);
             if (!added && slot->second != lower && (name == lower || name < slot->second))
                 slot->second = std::move(name);
@@ -152,12 +146,12 @@ struct Vfs::Impl {
         std::vector<fs::path> packages;
         for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
             std::error_code typeError;
-            const std::string ext = lowerCopy(it->path().extension().string());
+            const std::string ext = toLower(it->path().extension().string());
             if ((ext == ".pk3" && it->is_regular_file(typeError)) || (ext == ".pk3dir" && it->is_directory(typeError)))
                 packages.push_back(it->path());
         }
         std::sort(packages.begin(), packages.end(), [](const fs::path& a, const fs::path& b) {
-            std::string la = lowerCopy(a.filename().string()), lb = lowerCopy(b.filename().string());
+            std::string la = toLower(a.filename().string()), lb = toLower(b.filename().string());
             return la != lb ? la > lb : a.filename().string() > b.filename().string();
         });
         // The archives' directories are read side by side (a game's pk3s hold thousands of entries),
@@ -168,12 +162,12 @@ struct Vfs::Impl {
         };
         std::vector<Opened> opened(packages.size());
         tbb::parallel_for(size_t(0), packages.size(), [&](size_t i) {
-            if (lowerCopy(packages[i].extension().string()) != ".pk3dir")
+            if (toLower(packages[i].extension().string()) != ".pk3dir")
                 opened[i].archive = Pk3Archive::open(packages[i], opened[i].error);
         });
         for (size_t i = 0; i < packages.size(); ++i) {
             const fs::path& pk3 = packages[i];
-            if (lowerCopy(pk3.extension().string()) == ".pk3dir") {
+            if (toLower(pk3.extension().string()) == ".pk3dir") {
                 sources.push_back({VfsSource::Kind::Folder, pk3, game});
                 archives.emplace_back();
                 continue;
@@ -202,9 +196,9 @@ Vfs::Vfs(const VfsOptions& options, Log& log) : impl_(std::make_unique<Impl>()) 
 
     std::vector<std::string> mods;
     auto addMod = [&](const std::string& mod) {
-        if (mod.empty() || lowerCopy(mod) == lowerCopy(baseGame)) return;
+        if (mod.empty() || toLower(mod) == toLower(baseGame)) return;
         for (const std::string& known : mods)
-            if (lowerCopy(known) == lowerCopy(mod)) return;
+            if (toLower(known) == toLower(mod)) return;
         mods.push_back(mod);
     };
 
@@ -269,7 +263,7 @@ std::vector<std::vector<uint8_t>> Vfs::readAll(std::string_view path) const {
 std::vector<std::string> Vfs::list(std::string_view dir, std::string_view ext) const {
     std::string lowerDir = normalizeVfsPath(dir);
     while (!lowerDir.empty() && lowerDir.back() == '/') lowerDir.pop_back();
-    std::string lowerExt = lowerCopy(ext);
+    std::string lowerExt = toLower(ext);
     if (!lowerExt.empty() && lowerExt.front() == '.') lowerExt.erase(0, 1);
     const std::string prefix = lowerDir.empty() ? "" : lowerDir + "/";
 
@@ -295,7 +289,7 @@ std::vector<std::string> Vfs::list(std::string_view dir, std::string_view ext) c
             std::error_code typeError;
             if (!it->is_regular_file(typeError)) continue;
             const std::string name = it->path().filename().string();
-            const std::string key = prefix + lowerCopy(name);
+            const std::string key = prefix + toLower(name);
             if (hasExtension(key, lowerExt))
                 found.try_emplace(key, storedDir + name);
         }

@@ -1,19 +1,13 @@
 // The entity lump: "{ "key" "value" ... }" blocks, parsed the way the engines' tokenizer reads them
 // (quoted or bare tokens, // and /* */ comments, a NUL ends the text).
 #include "bspfile_internal.h"
+#include "ascii_case.h"
 
 #include <algorithm>
-#include <cctype>
 
 namespace q3::bsp {
 
 namespace {
-
-bool equalsNoCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-           });
-}
 
 struct Token {
     std::string text;

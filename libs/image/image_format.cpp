@@ -2,7 +2,7 @@
 #include "image.h"
 
 #include <algorithm>
-#include <cctype>
+#include "ascii_case.h"
 #include <string>
 
 namespace q3 {
@@ -13,9 +13,7 @@ std::string lowerExtension(std::string_view name) {
     size_t slash = name.find_last_of("/\\");
     size_t dot = name.find_last_of('.');
     if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return {};
-    std::string ext(name.substr(dot + 1));
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
+    return toLower(name.substr(dot + 1));
 }
 
 }  // namespace

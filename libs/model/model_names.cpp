@@ -1,6 +1,6 @@
 // Names q3map2 derives for imported models: shaders of materials, and .skin files.
 #include <algorithm>
-#include <cctype>
+#include "ascii_case.h"
 #include <sstream>
 
 #include "model.h"
@@ -11,7 +11,7 @@ namespace {
 bool startsWithNoCase(std::string_view s, std::string_view prefix) {
     return s.size() >= prefix.size() &&
            std::equal(prefix.begin(), prefix.end(), s.begin(),
-                      [](char a, char b) { return std::tolower(uint8_t(a)) == std::tolower(uint8_t(b)); });
+                      [](char a, char b) { return asciiLower(a) == asciiLower(b); });
 }
 
 size_t findNoCase(std::string_view s, std::string_view needle) {
