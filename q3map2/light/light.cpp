@@ -61,14 +61,28 @@ void loadLightInputs(LightContext& ctx, const CommonOptions& common, Log& log) {
     if (!common.homePath.empty()) vfsOptions.homePath = common.homePath;
     vfsOptions.baseGame = common.baseGame;
     vfsOptions.mapPath = ctx.bspPath;
-    ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
 
+    // The .srf and the BSP are read while the archives are listed, which leaves a core idle while
+    // the thread pool starts and while the last archive is listed. A failure of the VFS is still
+    // the one reported first.
     std::filesystem::path srfPath = ctx.bspPath;
     srfPath.replace_extension(".srf");
-    ctx.extras = loadSurfaceExtras(srfPath, ctx.options.sampleSize);
+    struct MapFiles {
+        SurfaceExtras extras;
+        bsp::Bsp bsp;
+    };
+    std::future<MapFiles> mapFiles =
+        std::async(ctx.threads == 1 ? std::launch::deferred : std::launch::async, [&ctx, &common, &srfPath] {
+            MapFiles files;
+            files.extras = loadSurfaceExtras(srfPath, ctx.options.sampleSize);
+            files.bsp = bsp::readBsp(ctx.bspPath, bsp::ReadOptions{common.force, true});
+            return files;
+        });
+    ctx.vfs = std::make_unique<Vfs>(vfsOptions, log);
+    MapFiles files = mapFiles.get();
+    ctx.extras = std::move(files.extras);
     if (!ctx.extras.loaded) log.info(strCat("no ", srfPath.string(), ": surfaces use default sample sizes"));
-
-    ctx.bsp = bsp::readBsp(ctx.bspPath, bsp::ReadOptions{common.force, true});
+    ctx.bsp = std::move(files.bsp);
     ctx.entities = bsp::parseEntities(ctx.bsp.entities, ctx.bspPath.string());
     if (ctx.entities.empty()) throw CompileError(ctx.bspPath.string() + ": entities: no worldspawn entity");
     ctx.world = readWorldLighting(ctx.entities[0]);
