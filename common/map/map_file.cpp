@@ -67,9 +67,9 @@ std::string shaderNameForTexture(std::string_view texture) {
     return "textures/" + std::string(texture);
 }
 
-MapFile loadMap(const std::filesystem::path& path) {
+MapFile loadMap(const std::filesystem::path& path, MapPrimitives primitives) {
     const std::string text = readFileText(path);
-    return parseMap(text, path.string());
+    return parseMap(text, path.string(), primitives);
 }
 
 }  // namespace q3::map

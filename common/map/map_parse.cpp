@@ -115,8 +115,20 @@ void parsePrimitive(Script& s, MapEntity& entity, int primitiveNum) {
     }
 }
 
+// The current token is the primitive's "{": its tokens up to the matching "}" (a patch and a
+// brushDef hold a block of their own).
+void skipPrimitive(Script& s, const MapEntity& entity, int primitiveNum) {
+    const PrimitiveContext ctx{entity.number, primitiveNum};
+    for (int depth = 1; depth > 0;) {
+        if (!s.next(true)) s.fail("unexpected end of file inside " + ctx.describe() + " (missing '}')");
+        if (s.tokenWasQuoted()) continue;
+        if (s.token() == "{") ++depth;
+        else if (s.token() == "}") --depth;
+    }
+}
+
 // The current token is the entity's "{".
-MapEntity parseEntity(Script& s, int number) {
+MapEntity parseEntity(Script& s, int number, MapPrimitives primitives) {
     MapEntity entity;
     entity.number = number;
     entity.line = s.line();
@@ -128,7 +140,8 @@ MapEntity parseEntity(Script& s, int number) {
         const bool bare = !s.tokenWasQuoted();
         if (bare && s.token() == "}") break;
         if (bare && s.token() == "{") {
-            parsePrimitive(s, entity, primitiveNum++);
+            if (primitives == MapPrimitives::Skip) skipPrimitive(s, entity, primitiveNum++);
+            else parsePrimitive(s, entity, primitiveNum++);
             continue;
         }
         if (bare && (s.token() == "(" || s.token() == ")"))
@@ -144,7 +157,7 @@ MapEntity parseEntity(Script& s, int number) {
 
 }  // namespace
 
-MapFile parseMap(std::string_view text, const std::string& name) {
+MapFile parseMap(std::string_view text, const std::string& name, MapPrimitives primitives) {
     Script s(text, name, true);
     MapFile map;
     map.name = name;
@@ -159,7 +172,7 @@ MapFile parseMap(std::string_view text, const std::string& name) {
         first = false;
         if (s.tokenWasQuoted() || s.token() != "{")
             s.fail("expected '{' to open entity " + std::to_string(map.entities.size()) + ", found '" + shown(s.token()) + "'");
-        map.entities.push_back(parseEntity(s, int(map.entities.size())));
+        map.entities.push_back(parseEntity(s, int(map.entities.size()), primitives));
     }
     return map;
 }

@@ -287,3 +287,58 @@ b
     EXPECT_EQ(e.brushes[1].primitiveNum, 2);
     EXPECT_EQ(e.primitiveCount(), 3);
 }
+
+TEST(MapParse, SkippedPrimitivesKeepKeysAfterEveryFormAndStillNeedTheirBraces) {
+    const char* text = R"({
+"classname" "worldspawn"
+{
+( 0 0 64 ) ( 0 1 64 ) ( 1 0 64 ) base_wall/concrete 0 0 0 0.5 0.5 0 0 0
+}
+"message" "after a brush"
+{
+brushDef
+{
+( 0 0 64 ) ( 0 1 64 ) ( 1 0 64 ) ( ( 0.03125 0 0 ) ( 0 0.03125 0 ) ) base_wall/concrete 0 0 0
+}
+}
+{
+patchDef2
+{
+base_trim/pewter
+( 3 3 0 0 0 )
+(
+( ( 0 0 0 0 0 ) ( 0 10 0 0 1 ) ( 0 20 0 0 2 ) )
+( ( 1 0 0 1 0 ) ( 1 10 0 1 1 ) ( 1 20 0 1 2 ) )
+( ( 2 0 5 2 0 ) ( 2 10 5 2 1 ) ( 2 20 5 2 2 ) )
+)
+}
+}
+"_color" "1 0.5 0"
+}
+{
+"classname" "light"
+"origin" "8 8 8"
+}
+)";
+    const MapFile map = parseMap(text, "forms.map", MapPrimitives::Skip);
+    ASSERT_EQ(map.entities.size(), 2u);
+    const MapEntity& world = map.entities[0];
+    EXPECT_EQ(world.primitiveCount(), 0);
+    EXPECT_EQ(world.value("message"), "after a brush");
+    EXPECT_EQ(world.value("_color"), "1 0.5 0");
+    EXPECT_EQ(map.entities[1].classname(), "light");
+    // The full parse of the same text reads the same keys.
+    const MapFile full = parseMap(text, "forms.map");
+    EXPECT_EQ(full.entities[0].pairs, world.pairs);
+    EXPECT_EQ(full.entities[0].primitiveCount(), 3);
+
+    const char* unclosed = R"({
+"classname" "worldspawn"
+{
+patchDef2
+{
+base_trim/pewter
+}
+)";
+    EXPECT_THROW(parseMap(unclosed, "unclosed.map", MapPrimitives::Skip), ScriptError);
+}
