@@ -67,9 +67,9 @@ std::string shaderNameForTexture(std::string_view texture) {
     return "textures/" + std::string(texture);
 }
 
-MapFile loadMap(const std::filesystem::path& path, MapPrimitives primitives) {
+MapFile loadMap(const std::filesystem::path& path) {
     const std::string text = readFileText(path);
-    return parseMap(text, path.string(), primitives);
+    return parseMap(text, path.string());
 }
 
 }  // namespace q3::map

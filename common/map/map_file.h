@@ -129,13 +129,10 @@ struct MapFile {
     std::vector<MapEntity> entities;  // file order
 };
 
-// What becomes of the brushes and patches: parsed, or passed over (their braces balanced) when
-// only the entities' keys are wanted (the light stage reads its lights from the .map).
-enum class MapPrimitives { Parse, Skip };
 // Parses .map text. `name` is used in error messages ("<name>:<line>: ...").
-MapFile parseMap(std::string_view text, const std::string& name, MapPrimitives primitives = MapPrimitives::Parse);
+MapFile parseMap(std::string_view text, const std::string& name);
 // Reads and parses a file; FileError when it cannot be read, ScriptError when malformed.
-MapFile loadMap(const std::filesystem::path& path, MapPrimitives primitives = MapPrimitives::Parse);
+MapFile loadMap(const std::filesystem::path& path);
 
 // q3map2's -light rule: entities whose classname starts with "light" (case-insensitive), in file order.
 bool isLightEntity(const MapEntity& entity);

@@ -115,20 +115,8 @@ void parsePrimitive(Script& s, MapEntity& entity, int primitiveNum) {
     }
 }
 
-// The current token is the primitive's "{": its tokens up to the matching "}" (a patch and a
-// brushDef hold a block of their own).
-void skipPrimitive(Script& s, const MapEntity& entity, int primitiveNum) {
-    const PrimitiveContext ctx{entity.number, primitiveNum};
-    for (int depth = 1; depth > 0;) {
-        if (!s.next(true)) s.fail("unexpected end of file inside " + ctx.describe() + " (missing '}')");
-        if (s.tokenWasQuoted()) continue;
-        if (s.token() == "{") ++depth;
-        else if (s.token() == "}") --depth;
-    }
-}
-
 // The current token is the entity's "{".
-MapEntity parseEntity(Script& s, int number, MapPrimitives primitives) {
+MapEntity parseEntity(Script& s, int number) {
     MapEntity entity;
     entity.number = number;
     entity.line = s.line();
@@ -140,8 +128,7 @@ MapEntity parseEntity(Script& s, int number, MapPrimitives primitives) {
         const bool bare = !s.tokenWasQuoted();
         if (bare && s.token() == "}") break;
         if (bare && s.token() == "{") {
-            if (primitives == MapPrimitives::Skip) skipPrimitive(s, entity, primitiveNum++);
-            else parsePrimitive(s, entity, primitiveNum++);
+            parsePrimitive(s, entity, primitiveNum++);
             continue;
         }
         if (bare && (s.token() == "(" || s.token() == ")"))
@@ -157,7 +144,7 @@ MapEntity parseEntity(Script& s, int number, MapPrimitives primitives) {
 
 }  // namespace
 
-MapFile parseMap(std::string_view text, const std::string& name, MapPrimitives primitives) {
+MapFile parseMap(std::string_view text, const std::string& name) {
     Script s(text, name, true);
     MapFile map;
     map.name = name;
@@ -172,7 +159,7 @@ MapFile parseMap(std::string_view text, const std::string& name, MapPrimitives p
         first = false;
         if (s.tokenWasQuoted() || s.token() != "{")
             s.fail("expected '{' to open entity " + std::to_string(map.entities.size()) + ", found '" + shown(s.token()) + "'");
-        map.entities.push_back(parseEntity(s, int(map.entities.size()), primitives));
+        map.entities.push_back(parseEntity(s, int(map.entities.size())));
     }
     return map;
 }

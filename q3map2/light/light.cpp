@@ -33,7 +33,7 @@ std::string loadMapLights(LightContext& ctx) {
     std::filesystem::path mapPath = ctx.bspPath;
     mapPath.replace_extension(".map");
     if (!std::filesystem::exists(mapPath)) return strCat("no ", mapPath.string(), ": using the light entities of the BSP only");
-    map::MapFile mapFile = map::loadMap(mapPath, map::MapPrimitives::Skip);
+    map::MapFile mapFile = map::loadMap(mapPath);
     for (const map::MapEntity& e : mapFile.entities) {
         bsp::Entity entity;
         entity.pairs = e.pairs;

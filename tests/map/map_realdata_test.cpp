@@ -184,21 +184,3 @@ TEST(MapRealData, DamagedRealFileFailsCleanly) {
     }
     EXPECT_GT(failures, 40);  // truncations alone nearly always break the last entity
 }
-
-TEST(MapRealData, SkippedPrimitivesLeaveEveryEntityKeyAsParsed) {
-    const auto sources = q3::test::oacmpMapSources();
-    ASSERT_EQ(sources.size(), 13u);
-    for (const auto& path : sources) {
-        SCOPED_TRACE(path.filename().string());
-        const std::string text = readFileText(path);
-        const MapFile parsed = parseMap(text, path.filename().string());
-        const MapFile skipped = parseMap(text, path.filename().string(), MapPrimitives::Skip);
-        ASSERT_EQ(skipped.entities.size(), parsed.entities.size());
-        for (size_t i = 0; i < parsed.entities.size(); ++i) {
-            EXPECT_EQ(skipped.entities[i].pairs, parsed.entities[i].pairs) << "entity " << i;
-            EXPECT_EQ(skipped.entities[i].line, parsed.entities[i].line) << "entity " << i;
-            EXPECT_EQ(skipped.entities[i].primitiveCount(), 0);
-        }
-        EXPECT_EQ(lightEntities(skipped).size(), lightEntities(parsed).size());
-    }
-}
