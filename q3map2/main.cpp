@@ -208,12 +208,13 @@ int main(int argc, char** argv) {
     q3::CommonOptions common;  // filled as far as the command line parsed
     std::shared_ptr<q3::FeedbackStream> feedback;
 #if !defined(__SANITIZE_ADDRESS__)
-    // Sanitizer builds free everything, so that their leak check sees the whole run.
+    // Sanitizer builds free everything and leave through the runtime's exit, so that their leak
+    // check sees the whole run.
     common.processEndsAfterStage = true;
 #endif
     try {
         const int status = run(args, log, common, feedback);
-        if (!feedback) {
+        if (common.processEndsAfterStage && !feedback) {
             // The stage's output is written and renamed; what is left is freeing, which the
             // process's end does at once. The editor's connection, when there is one, closes in order.
             std::fflush(nullptr);
