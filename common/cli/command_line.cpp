@@ -1,18 +1,17 @@
 #include "command_line.h"
 
+#include "ascii_case.h"
 #include "common_option_table.h"
 
 #include <algorithm>
-#include "ascii_case.h"
 
 namespace q3::cli {
 
 namespace {
 
-
 const StageDescription* findStage(std::span<const StageDescription> stages, const std::string& token) {
     for (const StageDescription& s : stages)
-        if (toLower(s.name) == toLower(token)) return &s;
+        if (equalsNoCase(s.name, token)) return &s;
     return nullptr;
 }
 

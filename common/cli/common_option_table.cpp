@@ -1,9 +1,9 @@
 #include "common_option_table.h"
 
+#include "ascii_case.h"
 #include "option_parser.h"
 
 #include <algorithm>
-#include "ascii_case.h"
 
 namespace q3::cli {
 

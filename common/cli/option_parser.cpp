@@ -4,6 +4,7 @@
 #include "edit_distance.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>

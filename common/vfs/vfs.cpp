@@ -196,9 +196,9 @@ Vfs::Vfs(const VfsOptions& options, Log& log) : impl_(std::make_unique<Impl>()) 
 
     std::vector<std::string> mods;
     auto addMod = [&](const std::string& mod) {
-        if (mod.empty() || toLower(mod) == toLower(baseGame)) return;
+        if (mod.empty() || equalsNoCase(mod, baseGame)) return;
         for (const std::string& known : mods)
-            if (toLower(known) == toLower(mod)) return;
+            if (equalsNoCase(known, mod)) return;
         mods.push_back(mod);
     };
 

@@ -1,7 +1,7 @@
 // The entity lump: "{ "key" "value" ... }" blocks, parsed the way the engines' tokenizer reads them
 // (quoted or bare tokens, // and /* */ comments, a NUL ends the text).
-#include "bspfile_internal.h"
 #include "ascii_case.h"
+#include "bspfile_internal.h"
 
 #include <algorithm>
 

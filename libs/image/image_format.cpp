@@ -2,8 +2,9 @@
 #include "image.h"
 
 #include <algorithm>
-#include "ascii_case.h"
 #include <string>
+
+#include "ascii_case.h"
 
 namespace q3 {
 

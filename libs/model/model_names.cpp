@@ -1,17 +1,16 @@
 // Names q3map2 derives for imported models: shaders of materials, and .skin files.
 #include <algorithm>
-#include "ascii_case.h"
+#include <cctype>
 #include <sstream>
 
+#include "ascii_case.h"
 #include "model.h"
 
 namespace q3::model {
 namespace {
 
 bool startsWithNoCase(std::string_view s, std::string_view prefix) {
-    return s.size() >= prefix.size() &&
-           std::equal(prefix.begin(), prefix.end(), s.begin(),
-                      [](char a, char b) { return asciiLower(a) == asciiLower(b); });
+    return s.size() >= prefix.size() && equalsNoCase(s.substr(0, prefix.size()), prefix);
 }
 
 size_t findNoCase(std::string_view s, std::string_view needle) {
