@@ -5,7 +5,7 @@ set -euo pipefail
 
 build_pkgs=(cmake ninja-build g++ pkg-config libembree-dev libtbb-dev libjpeg62-turbo-dev libpng-dev
             zlib1g-dev libminizip-dev rapidjson-dev libxml2-dev libglib2.0-dev libgtest-dev libassimp-dev
-            libbenchmark-dev ccache)
+            libjemalloc-dev libbenchmark-dev ccache)
 # The reference q3map2's runtime libraries too: its wrapper installs them when missing, but tests run
 # it from parallel processes, and on a fresh machine all but one of them lost the race for apt's lock.
 test_pkgs=(clang libclang-rt-14-dev glslang-tools unzip ca-certificates python3 time
